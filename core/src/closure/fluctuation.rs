@@ -1,0 +1,74 @@
+//! Fluid velocity fluctuations seen by particles: a stochastic face (one draw per particle
+//! per eddy) and a mean-field face (the particle diffusivity the model implies, used for
+//! the Eulerian drift velocity u_d = D grad(phi) / phi, Chassagne 2023 eqs 4.3-4.4).
+
+use crate::needs::Needs;
+use crate::param::Describe;
+use crate::rng::Rng;
+
+/// Local turbulence state at a particle or a cell. Fields a closure does not need may be
+/// zero; the scene check guarantees the needed ones are computed.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TurbulencePoint {
+    /// turbulent kinetic energy k (m^2/s^2)
+    pub k: f64,
+    /// specific dissipation rate omega (1/s)
+    pub omega: f64,
+    /// eddy viscosity nu_t (m^2/s)
+    pub nu_t: f64,
+    /// kinematic Reynolds shear stress magnitude R_xz / (rho_f (1-phi)) (m^2/s^2)
+    pub reynolds_stress: f64,
+}
+
+/// Column-scale quantities (for the eddy turnover time of the DRW).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FlowScales {
+    /// water depth above the bed (m)
+    pub depth: f64,
+    /// depth-averaged fluid velocity (m/s)
+    pub bulk_velocity: f64,
+}
+
+/// Particle kinematics relevant to eddy crossing.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ParticleSlip {
+    /// |v_p - u_f| (m/s)
+    pub slip: f64,
+    /// particle response time t_p = 4 rho_p d / (3 rho_f C_D |v_p - u_f|) (s)
+    pub response_time: f64,
+}
+
+/// One stochastic draw: the fluctuation (x, y, z) and how long it holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FluctuationDraw {
+    /// fluid velocity fluctuation (m/s), streamwise x, spanwise y, wall-normal z
+    pub u: [f64; 3],
+    /// time until the next draw (s); `f64::INFINITY` when no fluctuation is modelled
+    pub duration: f64,
+}
+
+/// A fluctuation closure.
+#[typetag::serde(tag = "type")]
+pub trait Fluctuation: Describe + Send + Sync + std::fmt::Debug {
+    /// Fields the closure needs from the turbulence closure.
+    fn needs(&self) -> Needs;
+
+    /// Whether the closure draws anything; a scene with an inactive closure pays for no
+    /// random numbers and no drift velocity.
+    fn is_active(&self) -> bool {
+        true
+    }
+
+    /// Draw the fluctuation seen by one particle, using the caller's seeded stream.
+    fn draw(&self, t: &TurbulencePoint, p: &ParticleSlip, s: &FlowScales, rng: &mut Rng) -> FluctuationDraw;
+
+    /// Wall-normal particle diffusivity implied by the model (m^2/s).
+    fn diffusivity(&self, t: &TurbulencePoint, s: &FlowScales) -> f64;
+
+    /// Diffusivity over a column.
+    fn diffusivity_batch(&self, t: &[TurbulencePoint], s: &FlowScales, out: &mut [f64]) {
+        for (o, tp) in out.iter_mut().zip(t) {
+            *o = self.diffusivity(tp, s);
+        }
+    }
+}

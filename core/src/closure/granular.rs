@@ -1,0 +1,122 @@
+//! Granular stress: local rheologies (mu(I), mu(K)) and frictional-collisional kinetic
+//! theory (Johnson-Jackson elastic stress + Garzo-Dufty kinetic theory).
+
+use crate::needs::{Field, Needs};
+use crate::param::Describe;
+
+/// Local state from which a local rheology computes its control number.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LocalState {
+    /// |d v_x / dz| (1/s)
+    pub shear_rate: f64,
+    /// particle pressure p_p (Pa)
+    pub pressure: f64,
+    /// particle diameter (m)
+    pub diameter: f64,
+    /// particle density (kg/m^3)
+    pub particle_density: f64,
+    /// fluid dynamic viscosity (Pa s)
+    pub fluid_viscosity: f64,
+}
+
+/// A local rheology: friction coefficient mu = tau_p / p_p and volume fraction as functions
+/// of one dimensionless control number (I or K).
+pub trait LocalRheology: Send + Sync {
+    /// Name of the control number, `i` or `k` (the CSV input name).
+    fn control_name(&self) -> &'static str;
+    /// Control number from the local state.
+    fn control_number(&self, s: &LocalState) -> f64;
+    /// Friction coefficient at control number `x >= 0`.
+    fn friction(&self, x: f64) -> f64;
+    /// Volume fraction at control number `x >= 0`.
+    fn packing(&self, x: f64) -> f64;
+    /// Friction and packing over a slice.
+    fn eval_batch(&self, x: &[f64], mu: &mut [f64], phi: &mut [f64]) {
+        for ((m, p), &xi) in mu.iter_mut().zip(phi.iter_mut()).zip(x) {
+            *m = self.friction(xi);
+            *p = self.packing(xi);
+        }
+    }
+}
+
+/// Dimensionless kinetic-theory coefficients at one volume fraction (Chassagne 2023 eqs
+/// 2.19-2.22 and table 1): p = rho_p F1 T, eta = rho_p d F2 sqrt(T),
+/// kappa = rho_p d F3 sqrt(T), Gamma = rho_p / d F4 T^{3/2}.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct KineticCoefficients {
+    /// radial distribution function at contact
+    pub g0: f64,
+    /// pressure coefficient
+    pub f1: f64,
+    /// viscosity coefficient (saltation-corrected when saltation is on and its input given)
+    pub f2: f64,
+    /// conductivity coefficient (idem)
+    pub f3: f64,
+    /// collisional dissipation coefficient (uses the effective restitution)
+    pub f4: f64,
+    /// effective restitution coefficient used in F4
+    pub e_eff: f64,
+}
+
+/// Per-point input of the saltation correction (Chassagne 2023 eq 3.6).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SaltationInput {
+    /// sqrt of the granular temperature (m/s)
+    pub sqrt_t: f64,
+    /// drag coefficient K of eq 2.10 (kg m^-3 s^-1)
+    pub k_drag: f64,
+    /// particle density (kg/m^3)
+    pub particle_density: f64,
+    /// particle diameter (m)
+    pub diameter: f64,
+}
+
+/// Frictional-collisional stress: elastic (Johnson-Jackson) + kinetic theory.
+pub trait KineticTheory: Send + Sync {
+    /// Maximum packing fraction phi_max at which g0 and the elastic pressure diverge.
+    fn phi_max(&self) -> f64;
+    /// Johnson-Jackson elastic pressure p_el(phi) (Pa), eq 2.14.
+    fn elastic_pressure(&self, phi: f64) -> f64;
+    /// Derivative d p_el / d phi (Pa), for implicit treatment of the elastic pressure.
+    fn elastic_pressure_derivative(&self, phi: f64) -> f64;
+    /// Static friction coefficient mu_s of the Coulomb elastic shear stress, eq 2.15.
+    fn static_friction(&self) -> f64;
+    /// Coefficients at `phi`; with `salt = Some(..)` and saltation enabled, F2 and F3 carry
+    /// the saltation correction of eqs 3.7 and 3.10.
+    fn coefficients(&self, phi: f64, salt: Option<&SaltationInput>) -> KineticCoefficients;
+    /// Factor c_J of the drag dissipation J_int = -phi (1-phi) K c_J T (eq 2.25: 3;
+    /// eq 3.13: 3 + 2 C_D^inf / C_D).
+    fn drag_dissipation_factor(&self, cd_inf: f64, cd: f64) -> f64;
+    /// Whether the saltation correction is on.
+    fn saltation_enabled(&self) -> bool;
+
+    /// Coefficients over a slice of volume fractions, saltation off.
+    fn coefficients_batch(&self, phi: &[f64], out: &mut [KineticCoefficients]) {
+        for (o, &p) in out.iter_mut().zip(phi) {
+            *o = self.coefficients(p, None);
+        }
+    }
+}
+
+/// A granular stress closure: exactly one of [`GranularStress::as_local`] and
+/// [`GranularStress::as_kinetic`] returns `Some`.
+#[typetag::serde(tag = "type")]
+pub trait GranularStress: Describe + Send + Sync + std::fmt::Debug {
+    /// Local-rheology view, if this is one.
+    fn as_local(&self) -> Option<&dyn LocalRheology> {
+        None
+    }
+    /// Kinetic-theory view, if this is one.
+    fn as_kinetic(&self) -> Option<&dyn KineticTheory> {
+        None
+    }
+    /// Fields this closure makes available to others (granular temperature for kinetic
+    /// theory).
+    fn provides(&self) -> Needs {
+        if self.as_kinetic().is_some() {
+            Needs::of(&[Field::GranularTemperature])
+        } else {
+            Needs::NONE
+        }
+    }
+}

@@ -1,0 +1,42 @@
+//! # saltus-core
+//!
+//! Units-free SI types, closure **traits**, the parameter/validation vocabulary shared by
+//! every closure, the model registry and the declarative scene schema of saltus.
+//!
+//! Models live in `saltus-closures`; algorithms in `saltus-solvers`. This crate holds no
+//! physics beyond the contracts that the two sides agree on.
+//!
+//! ## Adding a closure from outside the workspace
+//!
+//! Implement the family trait (say [`DragLaw`]) for a `Serialize + Deserialize` struct, mark
+//! the impl with `#[typetag::serde(name = "my_law")]`, implement [`Describe`] and register a
+//! default instance with [`register_model!`]. The scene format then accepts
+//! `[closures.drag] type = "my_law"` and `saltus models` lists it.
+
+pub mod closure;
+pub mod error;
+pub mod needs;
+pub mod param;
+pub mod registry;
+pub mod rng;
+pub mod scene;
+
+pub use closure::drag::DragLaw;
+pub use closure::fluctuation::{Fluctuation, FluctuationDraw, FlowScales, ParticleSlip, TurbulencePoint};
+pub use closure::granular::{
+    GranularStress, KineticCoefficients, KineticTheory, LocalRheology, LocalState, SaltationInput,
+};
+pub use closure::hindrance::Hindrance;
+pub use closure::turbulence::{ColumnView, Turbulence};
+pub use closure::viscosity::EffectiveViscosity;
+pub use closure::Family;
+pub use error::{Error, Result};
+pub use needs::{Field, Needs};
+pub use param::{Bound, Describe, Param, ParamError, ParamRange};
+pub use registry::ModelEntry;
+
+/// Re-exported so that `register_model!` works from crates that do not depend on inventory.
+pub use inventory;
+
+/// Standard gravity used by every scene unless it overrides `physics.gravity` (m/s^2).
+pub const G: f64 = 9.81;

@@ -1,0 +1,181 @@
+//! Parameters of closures: value, unit, valid range and meaning, in one place, so that
+//! listing (`saltus models`), documentation and validation can never disagree.
+
+use std::fmt;
+
+/// One end of a [`ParamRange`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Bound {
+    /// value itself excluded
+    Open(f64),
+    /// value itself included
+    Closed(f64),
+    /// no limit
+    Unbounded,
+}
+
+/// Valid interval of a real parameter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParamRange {
+    /// lower end
+    pub lo: Bound,
+    /// upper end
+    pub hi: Bound,
+}
+
+impl ParamRange {
+    /// `[lo, hi]`
+    pub const fn closed(lo: f64, hi: f64) -> Self {
+        Self { lo: Bound::Closed(lo), hi: Bound::Closed(hi) }
+    }
+    /// `(lo, hi)`
+    pub const fn open(lo: f64, hi: f64) -> Self {
+        Self { lo: Bound::Open(lo), hi: Bound::Open(hi) }
+    }
+    /// `(lo, hi]`
+    pub const fn open_closed(lo: f64, hi: f64) -> Self {
+        Self { lo: Bound::Open(lo), hi: Bound::Closed(hi) }
+    }
+    /// `[lo, hi)`
+    pub const fn closed_open(lo: f64, hi: f64) -> Self {
+        Self { lo: Bound::Closed(lo), hi: Bound::Open(hi) }
+    }
+    /// `(0, inf)`
+    pub const fn positive() -> Self {
+        Self { lo: Bound::Open(0.0), hi: Bound::Unbounded }
+    }
+    /// `[0, inf)`
+    pub const fn non_negative() -> Self {
+        Self { lo: Bound::Closed(0.0), hi: Bound::Unbounded }
+    }
+    /// any finite value
+    pub const fn any() -> Self {
+        Self { lo: Bound::Unbounded, hi: Bound::Unbounded }
+    }
+
+    /// Whether `x` is finite and inside the range.
+    pub fn contains(&self, x: f64) -> bool {
+        if !x.is_finite() {
+            return false;
+        }
+        let lo_ok = match self.lo {
+            Bound::Open(a) => x > a,
+            Bound::Closed(a) => x >= a,
+            Bound::Unbounded => true,
+        };
+        let hi_ok = match self.hi {
+            Bound::Open(b) => x < b,
+            Bound::Closed(b) => x <= b,
+            Bound::Unbounded => true,
+        };
+        lo_ok && hi_ok
+    }
+}
+
+impl fmt::Display for ParamRange {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.lo {
+            Bound::Open(a) => write!(f, "({a}, ")?,
+            Bound::Closed(a) => write!(f, "[{a}, ")?,
+            Bound::Unbounded => write!(f, "(-inf, ")?,
+        }
+        match self.hi {
+            Bound::Open(b) => write!(f, "{b})"),
+            Bound::Closed(b) => write!(f, "{b}]"),
+            Bound::Unbounded => write!(f, "inf)"),
+        }
+    }
+}
+
+/// A real parameter of a closure with its current value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Param {
+    /// key in the closure's TOML table (dotted for nested tables, e.g. `g0.a`)
+    pub name: String,
+    /// current value (the default when listed from a default instance)
+    pub value: f64,
+    /// valid range
+    pub range: ParamRange,
+    /// SI unit, `-` when dimensionless
+    pub unit: &'static str,
+    /// meaning, one line
+    pub doc: &'static str,
+}
+
+impl Param {
+    /// Shorthand constructor.
+    pub fn new(name: impl Into<String>, value: f64, range: ParamRange, unit: &'static str, doc: &'static str) -> Self {
+        Self { name: name.into(), value, range, unit, doc }
+    }
+
+    /// Same parameter with its key prefixed by `prefix.` (nested tables).
+    pub fn prefixed(mut self, prefix: &str) -> Self {
+        self.name = format!("{prefix}.{}", self.name);
+        self
+    }
+}
+
+/// A parameter value that breaks its range or a cross-parameter constraint.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("`{key}` = {value}: allowed {allowed}")]
+pub struct ParamError {
+    /// key relative to the closure table
+    pub key: String,
+    /// offending value, formatted
+    pub value: String,
+    /// what is allowed, e.g. `(0, 1]` or `< phi_max (0.635)`
+    pub allowed: String,
+}
+
+impl ParamError {
+    /// Error for key `key` whose value `value` is not within `allowed`.
+    pub fn new(key: impl Into<String>, value: impl fmt::Display, allowed: impl Into<String>) -> Self {
+        Self { key: key.into(), value: value.to_string(), allowed: allowed.into() }
+    }
+}
+
+/// Self-description shared by every closure: name, source, parameters, validation.
+///
+/// `validate` has a default that checks every [`Param`] against its range, then calls
+/// [`Describe::check_constraints`] for relations between parameters.
+pub trait Describe {
+    /// Registered model name (the `type` of its TOML table).
+    fn name(&self) -> &'static str;
+    /// Paper and equation numbers.
+    fn source(&self) -> &'static str;
+    /// The equation, one line, plain text.
+    fn equation(&self) -> &'static str;
+    /// Real parameters with their current values and ranges.
+    fn params(&self) -> Vec<Param> {
+        Vec::new()
+    }
+    /// Constraints linking several parameters (e.g. `phi_rlp < phi_max`).
+    fn check_constraints(&self) -> Result<(), ParamError> {
+        Ok(())
+    }
+    /// Check every parameter; the first violation is returned.
+    fn validate(&self) -> Result<(), ParamError> {
+        for p in self.params() {
+            if !p.range.contains(p.value) {
+                return Err(ParamError::new(p.name, p.value, p.range.to_string()));
+            }
+        }
+        self.check_constraints()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn range_contains_and_display() {
+        let r = ParamRange::open_closed(0.0, 1.0);
+        assert!(!r.contains(0.0));
+        assert!(r.contains(1.0));
+        assert!(!r.contains(f64::NAN));
+        assert_eq!(r.to_string(), "(0, 1]");
+        assert!(ParamRange::positive().contains(1e30));
+        assert!(!ParamRange::positive().contains(f64::INFINITY));
+    }
+}
