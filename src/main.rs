@@ -1,1 +1,177 @@
-fn main(){}
+//! `saltus`: closure models and solvers for two-phase sediment transport.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::{Parser, Subcommand};
+use saltus::eval::{evaluate, parse_model, EvalFamily};
+use saltus::table::Table;
+use saltus_core::closure::Family;
+use saltus_core::scene::Scene;
+
+#[derive(Parser)]
+#[command(name = "saltus", version, about = "Closure models and solvers for two-phase sediment transport")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List every registered closure model per family, with parameters, defaults, ranges
+    /// and sources.
+    Models {
+        /// only this family (drag, hindrance, viscosity, granular, turbulence, fluctuation)
+        family: Option<String>,
+        /// machine-readable JSON instead of text
+        #[arg(long)]
+        json: bool,
+    },
+    /// Parse a scene, fill defaults, check ranges and closure needs, print the resolved
+    /// scene.
+    Check {
+        /// scene file
+        scene: PathBuf,
+        /// override one key, e.g. --set physics.slope=0.05 or
+        /// --set 'closures.drag={type="stokes"}'
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
+    /// Run a scene with its solver and write its outputs.
+    Run {
+        /// scene file
+        scene: PathBuf,
+        /// override one key (repeatable)
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// output folder (default: the scene's output.dir, else out/<scene name>)
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Evaluate or plot closures on their own.
+    Closure {
+        #[command(subcommand)]
+        command: ClosureCommand,
+    },
+}
+
+#[derive(Subcommand)]
+enum ClosureCommand {
+    /// Evaluate one closure on the rows of a CSV whose header names its inputs; write the
+    /// inputs followed by the outputs.
+    #[command(after_help = EvalFamily::help())]
+    Eval {
+        /// closure family
+        #[arg(long, value_enum)]
+        family: EvalFamily,
+        /// the model's TOML table, e.g. 'type = "haider_levenspiel"' or
+        /// '{type = "richardson_zaki", exponent = 4.65}'
+        #[arg(long)]
+        model: String,
+        /// input CSV (`-` for standard input)
+        #[arg(long)]
+        input: PathBuf,
+        /// output CSV (standard output when absent)
+        #[arg(long)]
+        output: Option<PathBuf>,
+        /// seed of the stochastic draws (fluctuation family), one stream per row
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+    },
+    /// Draw closure curves side by side (PNG + CSV) from a comparison file such as
+    /// cases/closures/drag.toml.
+    Plot {
+        /// comparison file
+        file: PathBuf,
+        /// output folder (default out/closures/<file stem>)
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn parse_family(name: &str) -> anyhow::Result<Family> {
+    Family::from_key(name).with_context(|| {
+        format!(
+            "unknown family `{name}`; known: {}",
+            Family::ALL.iter().map(|f| f.key()).collect::<Vec<_>>().join(", ")
+        )
+    })
+}
+
+fn run(cli: Cli) -> anyhow::Result<()> {
+    saltus::ensure_registry()?;
+    match cli.command {
+        Command::Models { family, json } => {
+            let family = family.as_deref().map(parse_family).transpose()?;
+            if json {
+                println!("{}", serde_json::to_string_pretty(&saltus::listing::json(family))?);
+            } else {
+                print!("{}", saltus::listing::text(family));
+            }
+        }
+        Command::Check { scene, set } => {
+            let s = Scene::from_file_with(&scene, &set)?;
+            println!("# {} resolved: every default filled in, ranges and closure needs checked", scene.display());
+            print!("{}", s.to_toml()?);
+        }
+        Command::Run { scene, set, out } => {
+            let s = Scene::from_file_with(&scene, &set)?;
+            let out = out.unwrap_or_else(|| default_out(&s));
+            let progress = std::io::stderr().is_terminal();
+            let summary = saltus_solvers::run(&s, &out, progress)?;
+            println!("{summary}");
+        }
+        Command::Closure { command } => match command {
+            ClosureCommand::Eval { family, model, input, output, seed } => {
+                let model = parse_model(&model, family)?;
+                let (table, origin) = if input.as_os_str() == "-" {
+                    (Table::read_csv(std::io::stdin().lock(), "<stdin>")?, "<stdin>".to_string())
+                } else {
+                    (Table::read_csv_file(&input)?, input.display().to_string())
+                };
+                let result = evaluate(family, model, &table, &origin, seed)?;
+                match output {
+                    Some(p) => result.write_csv_file(&p)?,
+                    None => result.write_csv(std::io::stdout().lock())?,
+                }
+            }
+            ClosureCommand::Plot { file, out } => {
+                let stem = file.file_stem().map_or_else(|| "closures".into(), |s| s.to_string_lossy().into_owned());
+                let out = out.unwrap_or_else(|| PathBuf::from("out/closures").join(stem));
+                let written = saltus::plot::run(&file, &out)?;
+                println!("{}: {} figures written to {}", file.display(), written.len() / 2, out.display());
+                for w in written {
+                    println!("  {}", w.display());
+                }
+            }
+        },
+    }
+    Ok(())
+}
+
+fn default_out(s: &Scene) -> PathBuf {
+    match &s.output.dir {
+        Some(d) => PathBuf::from(d),
+        None => {
+            let name = if s.meta.name.is_empty() {
+                s.path.file_stem().map_or_else(|| "run".into(), |x| x.to_string_lossy().into_owned())
+            } else {
+                s.meta.name.clone()
+            };
+            PathBuf::from("out").join(name)
+        }
+    }
+}

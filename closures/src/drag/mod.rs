@@ -1,8 +1,14 @@
 //! Single-particle drag laws C_D(Re_p) (family `drag`).
 
 pub mod dallavalle;
+pub mod haider_levenspiel;
+pub mod schiller_naumann;
+pub mod stokes;
 
 pub use dallavalle::Dallavalle;
+pub use haider_levenspiel::HaiderLevenspiel;
+pub use schiller_naumann::SchillerNaumann;
+pub use stokes::Stokes;
 
 #[cfg(test)]
 mod tests {

@@ -1,1 +1,18 @@
-//! family turbulence
+//! Turbulence closures of the fluid column (family `turbulence`): laminar flow and
+//! algebraic mixing-length models.
+
+pub mod laminar;
+pub mod mixing_length;
+
+pub use laminar::Laminar;
+pub use mixing_length::{MixingLength, MixingLengthForm};
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn every_turbulence_model_round_trips() {
+        crate::testing::assert_round_trip::<dyn saltus_core::Turbulence>(
+            saltus_core::closure::Family::Turbulence,
+        );
+    }
+}

@@ -1,0 +1,368 @@
+//! Discrete random walk of Maurin et al. (2015).
+
+use rand_distr::{Distribution, StandardNormal};
+use saltus_core::closure::Family;
+use saltus_core::rng::Rng;
+use saltus_core::{
+    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Needs, Param,
+    ParamRange, ParticleSlip, TurbulencePoint,
+};
+use serde::{Deserialize, Serialize};
+
+/// Discrete random walk (DRW) tied to the Reynolds shear stress
+///
+/// u'_z = lambda_1,  u'_x = -u'_z + lambda_2,  u'_y = 0,  lambda_1, lambda_2 ~ N(0, sigma^2),
+/// sigma = sqrt(R_xz / (rho_f eps)), held for tau_t = w_d / U_f;
+/// so <u'_x u'_z> = -sigma^2, <u'_z^2> = sigma^2, <u'_x^2> = 2 sigma^2.
+///
+/// * Source: Maurin et al. 2015 eqs 15-16 and the text after them (sigma from the local
+///   Reynolds shear stress, redraw every eddy turnover time tau_t = water depth / mean
+///   fluid velocity).
+/// * Defaults: `period` absent, i.e. tau_t = [`FlowScales::depth`] /
+///   |[`FlowScales::bulk_velocity`]|. Give `period` (s) to impose a fixed redraw period.
+/// * Valid range: `period` > 0 when given. Needs the Reynolds shear stress
+///   ([`TurbulencePoint::reynolds_stress`], already R_xz/(rho_f eps)), e.g. from
+///   `mixing_length`; refused on laminar flow.
+///
+/// Mean-field diffusivity. The wall-normal velocity seen is piecewise constant, redrawn
+/// independently every tau_t. For a tracer observed at a uniformly random phase of its
+/// period, u'_z(t) and u'_z(t + s) are equal when no redraw falls in between (probability
+/// max(0, 1 - s/tau_t)) and independent otherwise, so the autocorrelation is
+/// R(s) = sigma^2 max(0, 1 - s/tau_t), the Lagrangian integral time is
+/// T_L = int_0^inf R/sigma^2 ds = tau_t/2, and Taylor's theorem gives
+/// D = sigma^2 T_L = sigma^2 tau_t / 2 (over a finite time t >= tau_t,
+/// <dz^2>/(2t) = D (1 - tau_t/(3t))). This is the tracer value. A particle responding with a
+/// linear drag has the same long-time limit (a first-order filter has unit gain at zero
+/// frequency) but a smaller displacement variance at finite times, and in a real flow
+/// crossing trajectories shorten the correlation time: for inertial particles D is an
+/// upper bound.
+///
+/// Decisions:
+/// * Maurin's model is two-component (x, z); u'_y = 0.
+/// * Random numbers: two standard normals per draw, lambda_1 first, always consumed.
+/// * A negative or NaN `reynolds_stress` counts as 0 (no fluctuation).
+/// * When no turnover time is defined (bulk velocity 0, zero or non-finite depth) the draw
+///   holds forever (`duration = inf`) and D = 0 (a frozen velocity is ballistic, not
+///   diffusive): never a NaN. A solver starting from rest should redraw when the flow
+///   scales change, or set `period`.
+/// * The model returns full periods; a solver that starts every particle with a fresh
+///   eddy at the same instant synchronises them, so it should shorten the first duration
+///   by a uniform random fraction (random phase), as the diffusivity test does.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct DiscreteRandomWalk {
+    /// fixed redraw period (s); absent: the eddy turnover time depth / bulk velocity
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub period: Option<f64>,
+}
+
+impl DiscreteRandomWalk {
+    /// Redraw period: `period` if given, else depth / |bulk velocity|; infinite when
+    /// neither defines a positive finite time.
+    pub fn turnover_time(&self, s: &FlowScales) -> f64 {
+        let tau = match self.period {
+            Some(p) => p,
+            None => s.depth / s.bulk_velocity.abs(),
+        };
+        if tau.is_finite() && tau > 0.0 {
+            tau
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// Standard deviation sigma = sqrt(R_xz / (rho_f eps)); 0 for a negative or NaN stress.
+    pub fn sigma(t: &TurbulencePoint) -> f64 {
+        t.reynolds_stress.max(0.0).sqrt()
+    }
+}
+
+impl Describe for DiscreteRandomWalk {
+    fn name(&self) -> &'static str {
+        "drw"
+    }
+    fn source(&self) -> &'static str {
+        "Maurin et al. 2015 eqs 15-16"
+    }
+    fn equation(&self) -> &'static str {
+        "u_z = l1, u_x = -u_z + l2, l1,l2 ~ N(0, R_xz/(rho_f eps)), held tau = depth/U; D = sigma^2 tau/2"
+    }
+    fn params(&self) -> Vec<Param> {
+        match self.period {
+            Some(p) => vec![Param::new(
+                "period",
+                p,
+                ParamRange::positive(),
+                "s",
+                "fixed redraw period",
+            )],
+            None => Vec::new(),
+        }
+    }
+}
+
+#[typetag::serde(name = "drw")]
+impl Fluctuation for DiscreteRandomWalk {
+    fn needs(&self) -> Needs {
+        Needs::of(&[Field::ReynoldsStress])
+    }
+
+    fn draw(
+        &self,
+        t: &TurbulencePoint,
+        _p: &ParticleSlip,
+        s: &FlowScales,
+        rng: &mut Rng,
+    ) -> FluctuationDraw {
+        let sigma = Self::sigma(t);
+        let l1: f64 = StandardNormal.sample(rng);
+        let l2: f64 = StandardNormal.sample(rng);
+        let uz = sigma * l1;
+        FluctuationDraw {
+            u: [-uz + sigma * l2, 0.0, uz],
+            duration: self.turnover_time(s),
+        }
+    }
+
+    fn diffusivity(&self, t: &TurbulencePoint, s: &FlowScales) -> f64 {
+        let tau = self.turnover_time(s);
+        if tau.is_finite() {
+            t.reynolds_stress.max(0.0) * tau / 2.0
+        } else {
+            0.0
+        }
+    }
+}
+
+register_model!(Family::Fluctuation, "drw", Fluctuation, DiscreteRandomWalk);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fluctuation::sim::{displacements, mean_se};
+    use approx::assert_relative_eq;
+    use proptest::prelude::*;
+    use rand::Rng as _;
+    use saltus_core::rng::{stream, Rng};
+
+    const SIGMA: f64 = 0.05;
+
+    fn point() -> TurbulencePoint {
+        TurbulencePoint {
+            reynolds_stress: SIGMA * SIGMA,
+            ..TurbulencePoint::default()
+        }
+    }
+    fn scales() -> FlowScales {
+        FlowScales {
+            depth: 0.1,
+            bulk_velocity: 1.0,
+        }
+    }
+
+    #[test]
+    fn second_moments_match_maurin() {
+        // N = 200 000 draws, fixed seed. Standard errors of the sample moments for Gaussian
+        // lambdas: <u_z^2>: sigma^2 sqrt(2/N); <u_x u_z> = <-l1^2 + l1 l2>: sigma^2 sqrt(3/N);
+        // <u_x^2> (u_x ~ N(0, 2 sigma^2)): sigma^2 sqrt(8/N); means: sigma sqrt(1/N),
+        // sigma sqrt(2/N). Tolerance: 4 standard errors.
+        let m = DiscreteRandomWalk::default();
+        let n = 200_000;
+        let mut rng = stream(2015, 0);
+        let (mut sx, mut sz, mut sxx, mut szz, mut sxz) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for _ in 0..n {
+            let d = m.draw(&point(), &ParticleSlip::default(), &scales(), &mut rng);
+            assert_eq!(d.u[1], 0.0);
+            assert_eq!(d.duration, 0.1);
+            sx += d.u[0];
+            sz += d.u[2];
+            sxx += d.u[0] * d.u[0];
+            szz += d.u[2] * d.u[2];
+            sxz += d.u[0] * d.u[2];
+        }
+        let nf = n as f64;
+        let s2 = SIGMA * SIGMA;
+        let tol = |c: f64| 4.0 * c * (1.0 / nf).sqrt();
+        assert!((sz / nf).abs() < tol(SIGMA));
+        assert!((sx / nf).abs() < tol(SIGMA * 2f64.sqrt()));
+        assert!(
+            (szz / nf - s2).abs() < tol(s2 * 2f64.sqrt()),
+            "<u_z^2> = {}",
+            szz / nf
+        );
+        assert!(
+            (sxz / nf + s2).abs() < tol(s2 * 3f64.sqrt()),
+            "<u_x u_z> = {}",
+            sxz / nf
+        );
+        assert!(
+            (sxx / nf - 2.0 * s2).abs() < tol(s2 * 8f64.sqrt()),
+            "<u_x^2> = {}",
+            sxx / nf
+        );
+    }
+
+    #[test]
+    fn same_stream_same_draws_other_stream_differs() {
+        let m = DiscreteRandomWalk::default();
+        let run = |k: u64| {
+            let mut rng = stream(7, k);
+            (0..16)
+                .map(|_| m.draw(&point(), &ParticleSlip::default(), &scales(), &mut rng))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(run(3), run(3));
+        assert_ne!(run(3), run(4));
+    }
+
+    #[test]
+    fn simulated_diffusivity_matches_mean_field() {
+        // 10 000 tracers, t = 100 tau, random phase (first eddy runs a uniform fraction of
+        // tau). Exact finite-time expectation <dz^2>/(2t) = D (1 - tau/(3t)); dz is Gaussian
+        // so the relative standard error of <dz^2> is sqrt(2/N) = 1.4 %. Tolerance: 4
+        // sample standard errors.
+        let m = DiscreteRandomWalk::default();
+        let tau = 0.1;
+        let t_end = 100.0 * tau;
+        let dz = displacements(
+            &m,
+            &point(),
+            &scales(),
+            10_000,
+            t_end,
+            42,
+            &|r: &mut Rng| r.gen::<f64>(),
+        );
+        let sq: Vec<f64> = dz.iter().map(|z| z * z / (2.0 * t_end)).collect();
+        let (est, se) = mean_se(&sq);
+        let d = m.diffusivity(&point(), &scales());
+        assert_relative_eq!(d, SIGMA * SIGMA * tau / 2.0, max_relative = 1e-14);
+        let expected = d * (1.0 - tau / (3.0 * t_end));
+        assert!(se < 0.02 * expected);
+        assert!(
+            (est - expected).abs() < 4.0 * se,
+            "D_sim = {est} +- {se}, D = {expected}"
+        );
+    }
+
+    #[test]
+    fn period_overrides_turnover_and_round_trips() {
+        let m = DiscreteRandomWalk { period: Some(0.5) };
+        assert_eq!(m.turnover_time(&scales()), 0.5);
+        assert_eq!(
+            m.diffusivity(&point(), &scales()),
+            SIGMA * SIGMA * 0.5 / 2.0
+        );
+        let b: Box<dyn Fluctuation> = Box::new(m.clone());
+        let text = saltus_core::scene::to_toml_table(&b).unwrap();
+        let back: Box<dyn Fluctuation> = saltus_core::scene::closure_from_value(
+            toml::Value::Table(text.parse().unwrap()),
+            Family::Fluctuation,
+            std::path::Path::new("drw.toml"),
+            "closures.fluctuation",
+        )
+        .unwrap();
+        assert_eq!(saltus_core::scene::to_toml_table(&back).unwrap(), text);
+        assert_eq!(
+            back.diffusivity(&point(), &scales()),
+            m.diffusivity(&point(), &scales())
+        );
+        assert!(text.contains("period = 0.5"));
+        let default_text = saltus_core::scene::to_toml_table(
+            &(Box::new(DiscreteRandomWalk::default()) as Box<dyn Fluctuation>),
+        )
+        .unwrap();
+        assert!(!default_text.contains("period"));
+    }
+
+    #[test]
+    fn degenerate_flow_scales_give_no_nan() {
+        let m = DiscreteRandomWalk::default();
+        let mut rng = stream(1, 1);
+        for s in [
+            FlowScales {
+                depth: 0.1,
+                bulk_velocity: 0.0,
+            },
+            FlowScales {
+                depth: 0.0,
+                bulk_velocity: 1.0,
+            },
+            FlowScales {
+                depth: 0.0,
+                bulk_velocity: 0.0,
+            },
+            FlowScales {
+                depth: f64::NAN,
+                bulk_velocity: 1.0,
+            },
+        ] {
+            let d = m.draw(&point(), &ParticleSlip::default(), &s, &mut rng);
+            assert_eq!(d.duration, f64::INFINITY);
+            assert!(d.u.iter().all(|u| u.is_finite()));
+            assert_eq!(m.diffusivity(&point(), &s), 0.0);
+        }
+        // reverse flow: the turnover time uses |U|
+        assert_eq!(
+            m.turnover_time(&FlowScales {
+                depth: 0.1,
+                bulk_velocity: -1.0
+            }),
+            0.1
+        );
+        // negative or NaN stress: no fluctuation
+        for rs in [-1e-3, f64::NAN] {
+            let tp = TurbulencePoint {
+                reynolds_stress: rs,
+                ..TurbulencePoint::default()
+            };
+            let d = m.draw(&tp, &ParticleSlip::default(), &scales(), &mut rng);
+            assert_eq!(d.u, [0.0; 3]);
+            assert_eq!(m.diffusivity(&tp, &scales()), 0.0);
+        }
+    }
+
+    #[test]
+    fn validate_names_period_and_needs_reynolds_stress() {
+        assert_eq!(
+            DiscreteRandomWalk { period: Some(0.0) }
+                .validate()
+                .unwrap_err()
+                .key,
+            "period"
+        );
+        assert_eq!(
+            DiscreteRandomWalk { period: Some(-1.0) }
+                .validate()
+                .unwrap_err()
+                .key,
+            "period"
+        );
+        assert!(DiscreteRandomWalk::default().validate().is_ok());
+        assert_eq!(
+            DiscreteRandomWalk::default().needs(),
+            Needs::of(&[Field::ReynoldsStress])
+        );
+        assert!(toml::from_str::<DiscreteRandomWalk>("tau = 1.0").is_err());
+    }
+
+    proptest! {
+        #[test]
+        fn diffusivity_batch_equals_scalar(
+            rs in proptest::collection::vec(0.0f64..1.0, 1..64),
+            depth in 1e-3f64..10.0,
+            u in -5.0f64..5.0,
+        ) {
+            let m = DiscreteRandomWalk::default();
+            let s = FlowScales { depth, bulk_velocity: u };
+            let tp: Vec<TurbulencePoint> =
+                rs.iter().map(|&r| TurbulencePoint { reynolds_stress: r, ..TurbulencePoint::default() }).collect();
+            let mut out = vec![f64::NAN; tp.len()];
+            m.diffusivity_batch(&tp, &s, &mut out);
+            for (o, t) in out.iter().zip(&tp) {
+                prop_assert_eq!(*o, m.diffusivity(t, &s));
+                prop_assert!(o.is_finite() && *o >= 0.0);
+            }
+        }
+    }
+}

@@ -1,0 +1,75 @@
+//! No hindrance.
+
+use saltus_core::closure::Family;
+use saltus_core::{register_model, Describe, Hindrance};
+use serde::{Deserialize, Serialize};
+
+/// No hindrance: the drag on a particle in a suspension is the single-particle drag
+///
+/// f(phi, Re_p) = 1
+///
+/// * Source: the dilute limit phi -> 0 of every hindrance law (e.g. Maurin et al. 2015
+///   eq 12 and Chassagne et al. 2023 eq 2.10 with zeta = 0).
+/// * Defaults: no parameters.
+/// * Valid range: dilute suspensions; any phi in [0, 1) and Re_p >= 0. C_D is evaluated
+///   at the interstitial Re_p.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct NoHindrance {}
+
+impl Describe for NoHindrance {
+    fn name(&self) -> &'static str {
+        "none"
+    }
+    fn source(&self) -> &'static str {
+        "dilute limit of Maurin et al. 2015 eq 12 / Chassagne et al. 2023 eq 2.10"
+    }
+    fn equation(&self) -> &'static str {
+        "f = 1"
+    }
+}
+
+#[typetag::serde(name = "none")]
+impl Hindrance for NoHindrance {
+    #[inline]
+    fn factor(&self, _phi: f64, _re_p: f64) -> f64 {
+        1.0
+    }
+}
+
+register_model!(Family::Hindrance, "none", Hindrance, NoHindrance);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    #[test]
+    fn is_one_and_interstitial() {
+        let h = NoHindrance::default();
+        assert_eq!(h.factor(0.0, 0.0), 1.0);
+        assert_eq!(h.factor(0.6, 100.0), 1.0);
+        assert_eq!(h.drag_reynolds(0.6, 100.0), 100.0);
+        assert!(h.validate().is_ok());
+        assert!(toml::from_str::<NoHindrance>("exponent = 3.1").is_err());
+    }
+
+    proptest! {
+        #[test]
+        fn tends_to_one_as_phi_vanishes(phi in 0f64..1e-6, re in 0f64..1e5) {
+            prop_assert_eq!(NoHindrance::default().factor(phi, re), 1.0);
+        }
+
+        #[test]
+        fn batch_equals_scalar(v in proptest::collection::vec((0f64..0.99, 0f64..1e5), 1..64)) {
+            let h = NoHindrance::default();
+            let phi: Vec<f64> = v.iter().map(|x| x.0).collect();
+            let re: Vec<f64> = v.iter().map(|x| x.1).collect();
+            let mut out = vec![0.0; v.len()];
+            h.factor_batch(&phi, &re, &mut out);
+            for i in 0..v.len() {
+                prop_assert_eq!(out[i].to_bits(), h.factor(phi[i], re[i]).to_bits());
+            }
+        }
+    }
+}

@@ -1,0 +1,66 @@
+//! Clear-fluid viscosity.
+
+use saltus_core::closure::Family;
+use saltus_core::{register_model, Describe, EffectiveViscosity};
+use serde::{Deserialize, Serialize};
+
+/// The fluid phase keeps the clear-fluid viscosity
+///
+/// nu_eff / nu_f = 1
+///
+/// * Source: Chassagne et al. 2023 eq 2.7 (fluid stress with the clear-fluid viscosity).
+/// * Defaults: no parameters.
+/// * Valid range: any phi; `phi_limit` = 1.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct ClearFluid {}
+
+impl Describe for ClearFluid {
+    fn name(&self) -> &'static str {
+        "clear_fluid"
+    }
+    fn source(&self) -> &'static str {
+        "Chassagne et al. 2023 eq 2.7"
+    }
+    fn equation(&self) -> &'static str {
+        "nu_eff / nu_f = 1"
+    }
+}
+
+#[typetag::serde(name = "clear_fluid")]
+impl EffectiveViscosity for ClearFluid {
+    #[inline]
+    fn ratio(&self, _phi: f64) -> f64 {
+        1.0
+    }
+}
+
+register_model!(Family::Viscosity, "clear_fluid", EffectiveViscosity, ClearFluid);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    #[test]
+    fn is_one() {
+        let v = ClearFluid::default();
+        assert_eq!(v.ratio(0.0), 1.0);
+        assert_eq!(v.ratio(0.6), 1.0);
+        assert_eq!(v.phi_limit(), 1.0);
+        assert!(v.validate().is_ok());
+        assert!(toml::from_str::<ClearFluid>("beta = 2.8").is_err());
+    }
+
+    proptest! {
+        #[test]
+        fn batch_equals_scalar(phi in proptest::collection::vec(0f64..0.99, 1..64)) {
+            let v = ClearFluid::default();
+            let mut out = vec![0.0; phi.len()];
+            v.ratio_batch(&phi, &mut out);
+            for (o, p) in out.iter().zip(&phi) {
+                prop_assert_eq!(o.to_bits(), v.ratio(*p).to_bits());
+            }
+        }
+    }
+}

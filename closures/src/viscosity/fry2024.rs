@@ -1,0 +1,189 @@
+//! Fry et al. (2024) fluid-phase viscosity for weakly inertial bedload.
+
+use saltus_core::closure::Family;
+use saltus_core::{register_model, Describe, EffectiveViscosity, Param, ParamRange};
+use serde::{Deserialize, Serialize};
+
+/// Fry, Lacaze et al. (2024) apparent viscosity of the equivalent fluid phase in bedload
+///
+/// nu_eff / nu_f = (1 - phi)^(-beta),  beta = beta0 + a (r theta sqrt(Re_p))^(2/3)
+///
+/// * Source: Fry et al. 2024 eq 32 with the first form of eq 51 (fit of their IBM-DEM
+///   Couette bedload simulations, figure 8).
+/// * Defaults: `beta0 = 0.565`, `a = 0.85` (eq 51), and the flow's dimensionless numbers
+///   `shields` theta = 0.67, `re_p` = 1 (Re_p = rho_f Gamma d^2 / eta_f with Gamma the
+///   Couette shear rate far above the bed, *not* a slip Reynolds number), `density_ratio`
+///   r = rho_p/rho_f = 2.5: the paper's reference case, giving beta = 1.7638 (their direct
+///   fit of that case is 1.71).
+/// * Valid range: `beta0` in [0, 10], `a` in [0, 10], `shields` in (0, 10], `re_p` in
+///   (0, 1000], `density_ratio` in (1, 20]. The fit itself is only supported for
+///   0.1 <= Re_p <= 10, 0.1 <= theta <= 0.7 and r = 2.5 (the paper warns it is not expected
+///   to hold at large Re_p and theta); outside that the law is an extrapolation.
+/// * Small-phi limit (eq 52): 1 + beta phi = 1 + phi [beta0 + a (r theta sqrt(Re_p))^(2/3)],
+///   *not* Einstein's 1 + 5/2 phi (beta0 = 0.565 is "quite smaller than 2.5").
+/// * The flow numbers are scene parameters, not local fields: beta is constant over the
+///   domain, as in the paper's fits. `phi_limit` = 1.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct Fry2024 {
+    /// viscous (dilute, theta -> 0) exponent beta0
+    pub beta0: f64,
+    /// prefactor a of the inertial correction
+    pub a: f64,
+    /// Shields number theta = eta_f Gamma / (Delta rho g d) of the flow
+    pub shields: f64,
+    /// shear particle Reynolds number Re_p = rho_f Gamma d^2 / eta_f of the flow
+    pub re_p: f64,
+    /// density ratio r = rho_p / rho_f
+    pub density_ratio: f64,
+}
+
+impl Default for Fry2024 {
+    fn default() -> Self {
+        Self { beta0: 0.565, a: 0.85, shields: 0.67, re_p: 1.0, density_ratio: 2.5 }
+    }
+}
+
+impl Fry2024 {
+    /// Exponent beta of eq 51 (first form).
+    #[inline]
+    pub fn beta(&self) -> f64 {
+        self.beta0 + self.a * (self.density_ratio * self.shields * self.re_p.sqrt()).powf(2.0 / 3.0)
+    }
+}
+
+/// (1 - phi)^(-beta), shared by the scalar and the batch path so that both agree bitwise.
+#[inline]
+fn power_law(phi: f64, beta: f64) -> f64 {
+    (1.0 - phi).powf(-beta)
+}
+
+impl Describe for Fry2024 {
+    fn name(&self) -> &'static str {
+        "fry2024"
+    }
+    fn source(&self) -> &'static str {
+        "Fry et al. 2024 eqs 32, 51 (first form), 52"
+    }
+    fn equation(&self) -> &'static str {
+        "nu_eff / nu_f = (1 - phi)^(-beta), beta = beta0 + a (r theta sqrt(Re_p))^(2/3)"
+    }
+    fn params(&self) -> Vec<Param> {
+        vec![
+            Param::new("beta0", self.beta0, ParamRange::closed(0.0, 10.0), "-", "viscous-limit exponent beta0"),
+            Param::new("a", self.a, ParamRange::closed(0.0, 10.0), "-", "prefactor of (r theta sqrt(Re_p))^(2/3)"),
+            Param::new(
+                "shields",
+                self.shields,
+                ParamRange::open_closed(0.0, 10.0),
+                "-",
+                "Shields number theta of the flow",
+            ),
+            Param::new(
+                "re_p",
+                self.re_p,
+                ParamRange::open_closed(0.0, 1000.0),
+                "-",
+                "shear particle Reynolds number rho_f Gamma d^2 / eta_f",
+            ),
+            Param::new(
+                "density_ratio",
+                self.density_ratio,
+                ParamRange::open_closed(1.0, 20.0),
+                "-",
+                "density ratio r = rho_p / rho_f",
+            ),
+        ]
+    }
+}
+
+#[typetag::serde(name = "fry2024")]
+impl EffectiveViscosity for Fry2024 {
+    #[inline]
+    fn ratio(&self, phi: f64) -> f64 {
+        power_law(phi, self.beta())
+    }
+    fn ratio_batch(&self, phi: &[f64], out: &mut [f64]) {
+        let beta = self.beta();
+        for (o, &p) in out.iter_mut().zip(phi) {
+            *o = power_law(p, beta);
+        }
+    }
+}
+
+register_model!(Family::Viscosity, "fry2024", EffectiveViscosity, Fry2024);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+    use proptest::prelude::*;
+
+    #[test]
+    fn beta_of_the_papers_cases() {
+        // 0.565 + 0.85 (2.5 * 0.67 * sqrt(Re_p))^(2/3), computed by hand (25 digits)
+        let f = |re_p| Fry2024 { re_p, ..Default::default() }.beta();
+        assert_relative_eq!(f(1.0), 1.763_842_507_276_374, max_relative = 1e-14);
+        assert_relative_eq!(f(10.0), 3.147_827_885_561_022, max_relative = 1e-14);
+        assert_relative_eq!(f(0.1), 1.121_453_399_503_437, max_relative = 1e-14);
+        // the paper's direct fit for (Re_p, theta) = (1, 0.67) is beta = 1.71
+        assert_relative_eq!(f(1.0), 1.71, max_relative = 0.04);
+        // a = 0: viscous limit beta0
+        assert_eq!(Fry2024 { a: 0.0, ..Default::default() }.beta(), 0.565);
+    }
+
+    #[test]
+    fn small_phi_slope_is_beta_not_einstein() {
+        let v = Fry2024::default();
+        let beta = v.beta();
+        assert_eq!(v.ratio(0.0), 1.0);
+        for h in [1e-4, 1e-6, 1e-8] {
+            assert_relative_eq!((v.ratio(h) - 1.0) / h, beta, max_relative = 1e-3);
+        }
+        assert!((beta - 2.5).abs() > 0.5);
+        assert_relative_eq!(v.ratio(0.3), 0.7f64.powf(-beta), max_relative = 1e-15);
+    }
+
+    #[test]
+    fn validate_refuses_out_of_range() {
+        let d = Fry2024::default;
+        let cases = [
+            (Fry2024 { beta0: -0.1, ..d() }, "beta0"),
+            (Fry2024 { a: 11.0, ..d() }, "a"),
+            (Fry2024 { shields: 0.0, ..d() }, "shields"),
+            (Fry2024 { re_p: 0.0, ..d() }, "re_p"),
+            (Fry2024 { re_p: 2000.0, ..d() }, "re_p"),
+            (Fry2024 { density_ratio: 1.0, ..d() }, "density_ratio"),
+            (Fry2024 { density_ratio: f64::NAN, ..d() }, "density_ratio"),
+        ];
+        for (v, key) in cases {
+            assert_eq!(v.validate().unwrap_err().key, key);
+        }
+        assert!(d().validate().is_ok());
+    }
+
+    #[test]
+    fn parses_from_toml() {
+        let v: Fry2024 = toml::from_str("shields = 0.3\nre_p = 10.0").unwrap();
+        assert_eq!(v, Fry2024 { shields: 0.3, re_p: 10.0, ..Default::default() });
+        assert!(toml::from_str::<Fry2024>("theta = 0.3").is_err());
+    }
+
+    proptest! {
+        #[test]
+        fn increasing(phi in 0f64..0.95, dphi in 1e-4f64..0.04, shields in 0.1f64..0.7, re_p in 0.1f64..10.0) {
+            let v = Fry2024 { shields, re_p, ..Default::default() };
+            prop_assert!(v.ratio(phi + dphi) > v.ratio(phi));
+        }
+
+        #[test]
+        fn batch_equals_scalar(phi in proptest::collection::vec(0f64..0.99, 1..64), re_p in 0.1f64..10.0) {
+            let v = Fry2024 { re_p, ..Default::default() };
+            let mut out = vec![0.0; phi.len()];
+            v.ratio_batch(&phi, &mut out);
+            for (o, p) in out.iter().zip(&phi) {
+                prop_assert_eq!(o.to_bits(), v.ratio(*p).to_bits());
+            }
+        }
+    }
+}

@@ -1,0 +1,293 @@
+//! `saltus closure eval`: evaluate one closure on the rows of a table.
+//!
+//! The input table's header names the closure's inputs; the output is the input columns
+//! followed by the closure's outputs. Inputs a model does not need may be absent.
+
+use std::path::Path;
+
+use anyhow::{anyhow, bail, Context};
+use saltus_core::closure::Family;
+use saltus_core::scene::closure_from_value;
+use saltus_core::{
+    ColumnView, DragLaw, EffectiveViscosity, Field, FlowScales, Fluctuation, GranularStress, Hindrance,
+    ParticleSlip, Turbulence, TurbulencePoint,
+};
+
+use crate::table::Table;
+
+/// A family as seen by `closure eval`: the six scene families plus `kinetic_theory`, the
+/// kinetic part of a `frictional_collisional` granular table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum EvalFamily {
+    /// drag coefficient
+    Drag,
+    /// hindrance factor
+    Hindrance,
+    /// effective viscosity
+    Viscosity,
+    /// local granular rheology (mu_i, mu_k)
+    Granular,
+    /// kinetic-theory coefficients of a frictional_collisional table
+    KineticTheory,
+    /// mixing length and eddy viscosity over a column
+    Turbulence,
+    /// fluctuation diffusivity and one stochastic draw per row
+    Fluctuation,
+}
+
+impl EvalFamily {
+    /// Input column names (required ones first; see [`EvalFamily::help`]).
+    pub fn inputs(self) -> &'static [&'static str] {
+        match self {
+            EvalFamily::Drag => &["re_p"],
+            EvalFamily::Hindrance => &["phi", "re_p"],
+            EvalFamily::Viscosity => &["phi"],
+            EvalFamily::Granular => &["i (mu_i) or k (mu_k)"],
+            EvalFamily::KineticTheory => &["phi"],
+            EvalFamily::Turbulence => &["z", "phi", "dudz", "d"],
+            EvalFamily::Fluctuation => &["k", "omega", "nu_t", "reynolds_stress", "slip", "response_time", "depth", "bulk_velocity"],
+        }
+    }
+
+    /// Output column names.
+    pub fn outputs(self) -> &'static [&'static str] {
+        match self {
+            EvalFamily::Drag => &["cd"],
+            EvalFamily::Hindrance => &["factor"],
+            EvalFamily::Viscosity => &["nu_ratio"],
+            EvalFamily::Granular => &["mu", "phi"],
+            EvalFamily::KineticTheory => &["g0", "f1", "f2", "f3", "f4", "e_eff"],
+            EvalFamily::Turbulence => &["l_m", "nu_t"],
+            EvalFamily::Fluctuation => &["diffusivity", "u_x", "u_y", "u_z", "duration"],
+        }
+    }
+
+    /// Name on the command line.
+    pub fn key(self) -> &'static str {
+        match self {
+            EvalFamily::KineticTheory => "kinetic_theory",
+            other => other.scene_family().map_or("", Family::key),
+        }
+    }
+
+    fn scene_family(self) -> Option<Family> {
+        Some(match self {
+            EvalFamily::Drag => Family::Drag,
+            EvalFamily::Hindrance => Family::Hindrance,
+            EvalFamily::Viscosity => Family::Viscosity,
+            EvalFamily::Granular | EvalFamily::KineticTheory => Family::Granular,
+            EvalFamily::Turbulence => Family::Turbulence,
+            EvalFamily::Fluctuation => Family::Fluctuation,
+        })
+    }
+
+    /// Every family, for help texts.
+    pub const ALL: [EvalFamily; 7] = [
+        EvalFamily::Drag,
+        EvalFamily::Hindrance,
+        EvalFamily::Viscosity,
+        EvalFamily::Granular,
+        EvalFamily::KineticTheory,
+        EvalFamily::Turbulence,
+        EvalFamily::Fluctuation,
+    ];
+
+    /// Help paragraph listing every family's inputs and outputs.
+    pub fn help() -> String {
+        let mut s = String::from("Families, inputs -> outputs:\n");
+        for f in Self::ALL {
+            s.push_str(&format!("  {:<15} {} -> {}\n", f.key(), f.inputs().join(", "), f.outputs().join(", ")));
+        }
+        s.push_str(
+            "\nNotes: hindrance re_p is the interstitial |u_f - v_p| d / nu; kinetic_theory takes a\n\
+             frictional_collisional table (type may be omitted) and gives the coefficients with\n\
+             saltation off, f4 with the effective restitution e_eff; turbulence rows are the cells\n\
+             of one column ordered from the bottom wall (z = cell centres, faces half-way);\n\
+             fluctuation inputs default to 0 except those the model needs; its draw uses --seed,\n\
+             one stream per row.",
+        );
+        s
+    }
+}
+
+/// Parse a model given on the command line: either `key = value` lines or an inline table
+/// `{ type = "...", ... }`.
+pub fn parse_model(text: &str, family: EvalFamily) -> anyhow::Result<toml::Value> {
+    let trimmed = text.trim();
+    let doc = if trimmed.starts_with('{') { format!("model = {trimmed}") } else { String::new() };
+    let mut table: toml::Table = if doc.is_empty() {
+        trimmed.parse().map_err(|e: toml::de::Error| anyhow!("--model: TOML syntax error: {}", e.message()))?
+    } else {
+        let mut t: toml::Table =
+            doc.parse().map_err(|e: toml::de::Error| anyhow!("--model: TOML syntax error: {}", e.message()))?;
+        match t.remove("model") {
+            Some(toml::Value::Table(inner)) => inner,
+            _ => bail!("--model: expected a table"),
+        }
+    };
+    if family == EvalFamily::KineticTheory && !table.contains_key("type") {
+        table.insert("type".into(), toml::Value::String("frictional_collisional".into()));
+    }
+    Ok(toml::Value::Table(table))
+}
+
+fn need<'a>(t: &'a Table, name: &str, family: EvalFamily, origin: &str) -> anyhow::Result<&'a [f64]> {
+    t.get(name).ok_or_else(|| {
+        anyhow!(
+            "{origin}: missing input column `{name}`; family {} takes {} (found: {})",
+            family.key(),
+            family.inputs().join(", "),
+            t.names.join(", ")
+        )
+    })
+}
+
+fn optional(t: &Table, name: &str) -> Vec<f64> {
+    t.get(name).map_or_else(|| vec![0.0; t.rows()], <[f64]>::to_vec)
+}
+
+/// Evaluate `model` (a closure table) of `family` on `input`; returns input + outputs.
+pub fn evaluate(family: EvalFamily, model: toml::Value, input: &Table, origin: &str, seed: u64) -> anyhow::Result<Table> {
+    let n = input.rows();
+    let src = Path::new("--model");
+    let scene_family = family.scene_family().ok_or_else(|| anyhow!("unknown family"))?;
+    let mut out = input.clone();
+    match family {
+        EvalFamily::Drag => {
+            let m: Box<dyn DragLaw> = closure_from_value(model, scene_family, src, "model")?;
+            let re = need(input, "re_p", family, origin)?;
+            let mut cd = vec![0.0; n];
+            m.cd_batch(re, &mut cd);
+            out.push("cd", cd);
+        }
+        EvalFamily::Hindrance => {
+            let m: Box<dyn Hindrance> = closure_from_value(model, scene_family, src, "model")?;
+            let phi = need(input, "phi", family, origin)?;
+            let re = need(input, "re_p", family, origin)?;
+            check_fraction(phi, origin)?;
+            let mut f = vec![0.0; n];
+            m.factor_batch(phi, re, &mut f);
+            out.push("factor", f);
+        }
+        EvalFamily::Viscosity => {
+            let m: Box<dyn EffectiveViscosity> = closure_from_value(model, scene_family, src, "model")?;
+            let phi = need(input, "phi", family, origin)?;
+            check_fraction(phi, origin)?;
+            let mut r = vec![0.0; n];
+            m.ratio_batch(phi, &mut r);
+            out.push("nu_ratio", r);
+        }
+        EvalFamily::Granular => {
+            let m: Box<dyn GranularStress> = closure_from_value(model, scene_family, src, "model")?;
+            let local = m.as_local().ok_or_else(|| {
+                anyhow!(
+                    "--model: `{}` is not a local rheology; evaluate its coefficients with --family kinetic_theory",
+                    m.name()
+                )
+            })?;
+            let x = need(input, local.control_name(), family, origin)?;
+            let mut mu = vec![0.0; n];
+            let mut phi = vec![0.0; n];
+            local.eval_batch(x, &mut mu, &mut phi);
+            out.push("mu", mu);
+            out.push("phi", phi);
+        }
+        EvalFamily::KineticTheory => {
+            let m: Box<dyn GranularStress> = closure_from_value(model, scene_family, src, "model")?;
+            let kt = m
+                .as_kinetic()
+                .ok_or_else(|| anyhow!("--model: `{}` is not a kinetic-theory closure (use frictional_collisional)", m.name()))?;
+            let phi = need(input, "phi", family, origin)?;
+            check_fraction(phi, origin)?;
+            let mut c = vec![saltus_core::KineticCoefficients::default(); n];
+            kt.coefficients_batch(phi, &mut c);
+            out.push("g0", c.iter().map(|c| c.g0).collect());
+            out.push("f1", c.iter().map(|c| c.f1).collect());
+            out.push("f2", c.iter().map(|c| c.f2).collect());
+            out.push("f3", c.iter().map(|c| c.f3).collect());
+            out.push("f4", c.iter().map(|c| c.f4).collect());
+            out.push("e_eff", c.iter().map(|c| c.e_eff).collect());
+        }
+        EvalFamily::Turbulence => {
+            let m: Box<dyn Turbulence> = closure_from_value(model, scene_family, src, "model")?;
+            let z = need(input, "z", family, origin)?;
+            let phi = need(input, "phi", family, origin)?;
+            let dudz = need(input, "dudz", family, origin)?;
+            check_fraction(phi, origin)?;
+            let dz = cell_widths(z, origin)?;
+            let d = need(input, "d", family, origin)?;
+            let diameter = d.first().copied().unwrap_or(0.0);
+            if d.iter().any(|&x| x != diameter) || !(diameter > 0.0) {
+                bail!("{origin}: column `d` must hold one positive grain diameter (m) on every row");
+            }
+            let col = ColumnView { z, dz: &dz, phi, dudz, diameter, nu_f: 0.0, transported: &[] };
+            let mut lm = vec![0.0; n];
+            m.mixing_length(&col, &mut lm);
+            let nut = lm.iter().zip(dudz).map(|(&l, &g)| m.eddy_viscosity_point(l, g)).collect();
+            out.push("l_m", lm);
+            out.push("nu_t", nut);
+        }
+        EvalFamily::Fluctuation => {
+            let m: Box<dyn Fluctuation> = closure_from_value(model, scene_family, src, "model")?;
+            for f in m.needs().iter() {
+                let col = match f {
+                    Field::Tke => "k",
+                    Field::Omega => "omega",
+                    Field::EddyViscosity => "nu_t",
+                    Field::ReynoldsStress => "reynolds_stress",
+                    Field::GranularTemperature => "granular_temperature",
+                };
+                need(input, col, family, origin)
+                    .with_context(|| format!("model `{}` needs {f}", m.name()))?;
+            }
+            let (k, omega, nut, rs) = (optional(input, "k"), optional(input, "omega"), optional(input, "nu_t"), optional(input, "reynolds_stress"));
+            let (slip, tp) = (optional(input, "slip"), optional(input, "response_time"));
+            let (depth, ub) = (optional(input, "depth"), optional(input, "bulk_velocity"));
+            let mut cols: [Vec<f64>; 5] = Default::default();
+            for i in 0..n {
+                let t = TurbulencePoint { k: k[i], omega: omega[i], nu_t: nut[i], reynolds_stress: rs[i] };
+                let s = FlowScales { depth: depth[i], bulk_velocity: ub[i] };
+                let p = ParticleSlip { slip: slip[i], response_time: tp[i] };
+                let mut rng = saltus_core::rng::stream(seed, i as u64);
+                let d = m.draw(&t, &p, &s, &mut rng);
+                cols[0].push(m.diffusivity(&t, &s));
+                cols[1].push(d.u[0]);
+                cols[2].push(d.u[1]);
+                cols[3].push(d.u[2]);
+                cols[4].push(d.duration);
+            }
+            for (name, c) in ["diffusivity", "u_x", "u_y", "u_z", "duration"].into_iter().zip(cols) {
+                out.push(name, c);
+            }
+        }
+    }
+    Ok(out)
+}
+
+fn check_fraction(phi: &[f64], origin: &str) -> anyhow::Result<()> {
+    if let Some((i, p)) = phi.iter().enumerate().find(|(_, p)| !(0.0..1.0).contains(*p)) {
+        bail!("{origin}: row {}: phi = {p} outside [0, 1)", i + 2);
+    }
+    Ok(())
+}
+
+/// Cell widths of a column given by its cell centres: faces half-way between centres,
+/// the bottom face at z = 0.
+pub fn cell_widths(z: &[f64], origin: &str) -> anyhow::Result<Vec<f64>> {
+    let mut faces = Vec::with_capacity(z.len() + 1);
+    faces.push(0.0);
+    for w in z.windows(2) {
+        if w[1] <= w[0] {
+            bail!("{origin}: z must increase from row to row (cell centres from the bottom wall)");
+        }
+        faces.push(0.5 * (w[0] + w[1]));
+    }
+    if let Some(&last) = z.last() {
+        let below = faces[faces.len() - 1];
+        if last <= below {
+            bail!("{origin}: z must be positive cell centres from the bottom wall");
+        }
+        faces.push(2.0 * last - below);
+    }
+    Ok(faces.windows(2).map(|f| f[1] - f[0]).collect())
+}

@@ -1,0 +1,68 @@
+//! `saltus models`: every registered model per family with its equation, source,
+//! parameters, defaults and valid ranges.
+
+use std::fmt::Write;
+
+use saltus_core::closure::Family;
+use saltus_core::registry;
+
+/// Text listing of the models of `family` (all families when `None`).
+pub fn text(family: Option<Family>) -> String {
+    let mut s = String::new();
+    for f in Family::ALL.into_iter().filter(|f| family.is_none_or(|g| g == *f)) {
+        let _ = writeln!(s, "[closures.{}]  {}", f.key(), f.describe());
+        for m in registry::models_of(f) {
+            let d = (m.default)();
+            let _ = writeln!(s, "  {}", m.name);
+            let _ = writeln!(s, "      equation: {}", d.equation());
+            let _ = writeln!(s, "      source:   {}", d.source());
+            let params = d.params();
+            if params.is_empty() {
+                let _ = writeln!(s, "      parameters: none");
+            }
+            for p in params {
+                let _ = writeln!(
+                    s,
+                    "      {:<22} default {:<10} range {:<14} [{}] {}",
+                    p.name,
+                    p.value,
+                    p.range.to_string(),
+                    p.unit,
+                    p.doc
+                );
+            }
+            if let Ok(t) = (m.default_toml)() {
+                let inline = t.lines().filter(|l| !l.trim().is_empty()).collect::<Vec<_>>().join("; ");
+                let _ = writeln!(s, "      toml:     {inline}");
+            }
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// JSON listing (for tools).
+pub fn json(family: Option<Family>) -> serde_json::Value {
+    let mut out = Vec::new();
+    for m in registry::models() {
+        if family.is_some_and(|f| f != m.family) {
+            continue;
+        }
+        let d = (m.default)();
+        let params: Vec<_> = d
+            .params()
+            .into_iter()
+            .map(|p| {
+                serde_json::json!({
+                    "name": p.name, "default": p.value, "range": p.range.to_string(),
+                    "unit": p.unit, "doc": p.doc
+                })
+            })
+            .collect();
+        out.push(serde_json::json!({
+            "family": m.family.key(), "name": m.name, "equation": d.equation(),
+            "source": d.source(), "parameters": params
+        }));
+    }
+    serde_json::Value::Array(out)
+}
