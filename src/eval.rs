@@ -28,6 +28,7 @@ pub enum EvalFamily {
     /// local granular rheology (mu_i, mu_k)
     Granular,
     /// kinetic-theory coefficients of a frictional_collisional table
+    #[value(name = "kinetic_theory")]
     KineticTheory,
     /// mixing length and eddy viscosity over a column
     Turbulence,
