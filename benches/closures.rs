@@ -57,7 +57,9 @@ fn benches(c: &mut Criterion) {
         let m: Box<dyn GranularStress> = model(Family::Granular, &format!("type = \"{name}\""));
         let local = m.as_local().expect("local rheology");
         let mut phi_out = vec![0.0; N];
-        g.bench_function(format!("granular/{name}"), |b| b.iter(|| local.eval_batch(black_box(&re), &mut out, &mut phi_out)));
+        g.bench_function(format!("granular/{name}"), |b| {
+            b.iter(|| local.eval_batch(black_box(&re), &mut out, &mut phi_out))
+        });
     }
     let fc: Box<dyn GranularStress> = model(Family::Granular, "type = \"frictional_collisional\"");
     let kt = fc.as_kinetic().expect("kinetic");
@@ -78,7 +80,9 @@ fn benches(c: &mut Criterion) {
     for form in ["prandtl", "li_sawamoto", "berzi_fraccarollo"] {
         let m: Box<dyn Turbulence> = model(Family::Turbulence, &format!("type = \"mixing_length\"\nform = \"{form}\""));
         let col = ColumnView { z: &z, dz: &dz, phi: &phi, dudz: &dudz, diameter: 6e-3, nu_f: 1e-6, transported: &[] };
-        g.bench_function(format!("turbulence/mixing_length_{form}"), |b| b.iter(|| m.eddy_viscosity(black_box(&col), &mut out)));
+        g.bench_function(format!("turbulence/mixing_length_{form}"), |b| {
+            b.iter(|| m.eddy_viscosity(black_box(&col), &mut out))
+        });
     }
     let tps: Vec<TurbulencePoint> = (0..N)
         .map(|i| TurbulencePoint { k: 1e-3 * (1.0 + i as f64), omega: 10.0, nu_t: 1e-4, reynolds_stress: 1e-3 })

@@ -9,8 +9,8 @@ use anyhow::{anyhow, bail, Context};
 use saltus_core::closure::Family;
 use saltus_core::scene::closure_from_value;
 use saltus_core::{
-    ColumnView, DragLaw, EffectiveViscosity, Field, FlowScales, Fluctuation, GranularStress, Hindrance,
-    ParticleSlip, Turbulence, TurbulencePoint,
+    ColumnView, DragLaw, EffectiveViscosity, Field, FlowScales, Fluctuation, GranularStress, Hindrance, ParticleSlip,
+    Turbulence, TurbulencePoint,
 };
 
 use crate::table::Table;
@@ -46,7 +46,9 @@ impl EvalFamily {
             EvalFamily::Granular => &["i (mu_i) or k (mu_k)"],
             EvalFamily::KineticTheory => &["phi"],
             EvalFamily::Turbulence => &["z", "phi", "dudz", "d"],
-            EvalFamily::Fluctuation => &["k", "omega", "nu_t", "reynolds_stress", "slip", "response_time", "depth", "bulk_velocity"],
+            EvalFamily::Fluctuation => {
+                &["k", "omega", "nu_t", "reynolds_stress", "slip", "response_time", "depth", "bulk_velocity"]
+            }
         }
     }
 
@@ -148,7 +150,13 @@ fn optional(t: &Table, name: &str) -> Vec<f64> {
 }
 
 /// Evaluate `model` (a closure table) of `family` on `input`; returns input + outputs.
-pub fn evaluate(family: EvalFamily, model: toml::Value, input: &Table, origin: &str, seed: u64) -> anyhow::Result<Table> {
+pub fn evaluate(
+    family: EvalFamily,
+    model: toml::Value,
+    input: &Table,
+    origin: &str,
+    seed: u64,
+) -> anyhow::Result<Table> {
     let n = input.rows();
     let src = Path::new("--model");
     let scene_family = family.scene_family().ok_or_else(|| anyhow!("unknown family"))?;
@@ -195,9 +203,9 @@ pub fn evaluate(family: EvalFamily, model: toml::Value, input: &Table, origin: &
         }
         EvalFamily::KineticTheory => {
             let m: Box<dyn GranularStress> = closure_from_value(model, scene_family, src, "model")?;
-            let kt = m
-                .as_kinetic()
-                .ok_or_else(|| anyhow!("--model: `{}` is not a kinetic-theory closure (use frictional_collisional)", m.name()))?;
+            let kt = m.as_kinetic().ok_or_else(|| {
+                anyhow!("--model: `{}` is not a kinetic-theory closure (use frictional_collisional)", m.name())
+            })?;
             let phi = need(input, "phi", family, origin)?;
             check_fraction(phi, origin)?;
             let mut c = vec![saltus_core::KineticCoefficients::default(); n];
@@ -238,10 +246,14 @@ pub fn evaluate(family: EvalFamily, model: toml::Value, input: &Table, origin: &
                     Field::ReynoldsStress => "reynolds_stress",
                     Field::GranularTemperature => "granular_temperature",
                 };
-                need(input, col, family, origin)
-                    .with_context(|| format!("model `{}` needs {f}", m.name()))?;
+                need(input, col, family, origin).with_context(|| format!("model `{}` needs {f}", m.name()))?;
             }
-            let (k, omega, nut, rs) = (optional(input, "k"), optional(input, "omega"), optional(input, "nu_t"), optional(input, "reynolds_stress"));
+            let (k, omega, nut, rs) = (
+                optional(input, "k"),
+                optional(input, "omega"),
+                optional(input, "nu_t"),
+                optional(input, "reynolds_stress"),
+            );
             let (slip, tp) = (optional(input, "slip"), optional(input, "response_time"));
             let (depth, ub) = (optional(input, "depth"), optional(input, "bulk_velocity"));
             let mut cols: [Vec<f64>; 5] = Default::default();

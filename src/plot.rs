@@ -71,15 +71,12 @@ fn default_points() -> usize {
 }
 
 fn family_of(name: &str) -> anyhow::Result<EvalFamily> {
-    EvalFamily::ALL
-        .into_iter()
-        .find(|f| f.key() == name)
-        .ok_or_else(|| {
-            anyhow!(
-                "unknown family `{name}`; known: {}",
-                EvalFamily::ALL.iter().map(|f| f.key()).collect::<Vec<_>>().join(", ")
-            )
-        })
+    EvalFamily::ALL.into_iter().find(|f| f.key() == name).ok_or_else(|| {
+        anyhow!(
+            "unknown family `{name}`; known: {}",
+            EvalFamily::ALL.iter().map(|f| f.key()).collect::<Vec<_>>().join(", ")
+        )
+    })
 }
 
 /// Read a comparison file.
@@ -128,9 +125,14 @@ pub fn run(path: &Path, out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
             let model = parse_model(&toml::to_string(&curve.model)?, family)?;
             let t = evaluate(family, model, &input, &format!("{origin}: {key}.model[{mi}]"), 0)
                 .with_context(|| format!("{origin}: {key}.model[{mi}] ({})", curve.label))?;
-            let y = t
-                .get(&fig.y)
-                .ok_or_else(|| anyhow!("{origin}: {key}.y: `{}` is not an output of {}; outputs: {}", fig.y, family.key(), family.outputs().join(", ")))?;
+            let y = t.get(&fig.y).ok_or_else(|| {
+                anyhow!(
+                    "{origin}: {key}.y: `{}` is not an output of {}; outputs: {}",
+                    fig.y,
+                    family.key(),
+                    family.outputs().join(", ")
+                )
+            })?;
             result.push(curve.label.clone(), y.to_vec());
         }
         std::fs::create_dir_all(out_dir).with_context(|| format!("{}: cannot create", out_dir.display()))?;
@@ -196,7 +198,12 @@ fn draw(title: &str, fig: &Figure, t: &Table, png: &Path) -> anyhow::Result<()> 
     macro_rules! body {
         ($chart:expr) => {{
             let mut chart = $chart;
-            chart.configure_mesh().x_desc(fig.x.as_str()).y_desc(fig.y.as_str()).label_style(("sans-serif", 15)).draw()?;
+            chart
+                .configure_mesh()
+                .x_desc(fig.x.as_str())
+                .y_desc(fig.y.as_str())
+                .label_style(("sans-serif", 15))
+                .draw()?;
             let xs = &t.columns[0];
             for (i, (name, ys)) in t.names[1..].iter().zip(&t.columns[1..]).enumerate() {
                 let color = COLORS[i % COLORS.len()];

@@ -60,9 +60,25 @@ fn models_lists_every_family_with_parameters_and_sources() {
         assert!(text.contains(&format!("[closures.{family}]")), "missing family {family}");
     }
     for model in [
-        "stokes", "dallavalle", "schiller_naumann", "haider_levenspiel", "richardson_zaki", "di_felice",
-        "clear_fluid", "einstein", "batchelor_green", "krieger_dougherty", "gibilaro", "fry2024", "mu_i", "mu_k",
-        "frictional_collisional", "laminar", "mixing_length", "drw", "eim",
+        "stokes",
+        "dallavalle",
+        "schiller_naumann",
+        "haider_levenspiel",
+        "richardson_zaki",
+        "di_felice",
+        "clear_fluid",
+        "einstein",
+        "batchelor_green",
+        "krieger_dougherty",
+        "gibilaro",
+        "fry2024",
+        "mu_i",
+        "mu_k",
+        "frictional_collisional",
+        "laminar",
+        "mixing_length",
+        "drw",
+        "eim",
     ] {
         assert!(text.contains(&format!("\n  {model}\n")), "model {model} not listed");
     }
@@ -103,7 +119,14 @@ fn check_fills_defaults_and_prints_the_resolved_scene() {
 
 #[test]
 fn check_applies_set_overrides() {
-    let o = saltus(&["check", "cases/chassagne2023/case01.toml", "--set", "closures.drag={type=\"stokes\"}", "--set", "physics.slope=0.02"]);
+    let o = saltus(&[
+        "check",
+        "cases/chassagne2023/case01.toml",
+        "--set",
+        "closures.drag={type=\"stokes\"}",
+        "--set",
+        "physics.slope=0.02",
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = stdout(&o);
     assert!(text.contains("type = \"stokes\""), "{text}");
@@ -120,7 +143,8 @@ fn unknown_model_lists_known_ones() {
 
 #[test]
 fn unknown_fields_are_rejected_with_their_path() {
-    let err = assert_clean_failure(&check_scene("unknown_field", "[closures.drag]\ntype = \"dallavalle\"\ncdinf = 0.4\n"));
+    let err =
+        assert_clean_failure(&check_scene("unknown_field", "[closures.drag]\ntype = \"dallavalle\"\ncdinf = 0.4\n"));
     assert!(err.contains("closures.drag") && err.contains("cdinf"), "{err}");
     let err = assert_clean_failure(&check_scene("unknown_top", "[fluid]\ndensity = 1000.0\nviscosty = 1e-6\n"));
     assert!(err.contains("viscosty"), "{err}");
@@ -132,12 +156,28 @@ fn unknown_fields_are_rejected_with_their_path() {
 fn out_of_range_parameters_name_key_and_range() {
     let cases = [
         ("sphericity", "[closures.drag]\ntype = \"haider_levenspiel\"\nsphericity = 1.5\n", "closures.drag.sphericity"),
-        ("sphericity0", "[closures.drag]\ntype = \"haider_levenspiel\"\nsphericity = 0.0\n", "closures.drag.sphericity"),
+        (
+            "sphericity0",
+            "[closures.drag]\ntype = \"haider_levenspiel\"\nsphericity = 0.0\n",
+            "closures.drag.sphericity",
+        ),
         ("neg_visc", "[fluid]\nviscosity = -1e-6\n", "fluid.viscosity"),
         ("phi_m", "[closures.viscosity]\ntype = \"krieger_dougherty\"\nphi_m = 1.0\n", "closures.viscosity.phi_m"),
-        ("e_high", "[closures.granular]\ntype = \"frictional_collisional\"\nrestitution = 1.2\n", "closures.granular.restitution"),
-        ("e_zero", "[closures.granular]\ntype = \"frictional_collisional\"\nrestitution = 0.0\n", "closures.granular.restitution"),
-        ("phi_max", "[closures.granular]\ntype = \"frictional_collisional\"\nphi_max = 1.0\n", "closures.granular.phi_max"),
+        (
+            "e_high",
+            "[closures.granular]\ntype = \"frictional_collisional\"\nrestitution = 1.2\n",
+            "closures.granular.restitution",
+        ),
+        (
+            "e_zero",
+            "[closures.granular]\ntype = \"frictional_collisional\"\nrestitution = 0.0\n",
+            "closures.granular.restitution",
+        ),
+        (
+            "phi_max",
+            "[closures.granular]\ntype = \"frictional_collisional\"\nphi_max = 1.0\n",
+            "closures.granular.phi_max",
+        ),
         ("diameter", "", "particles.diameter"),
     ];
     for (name, extra, key) in cases {
@@ -183,7 +223,8 @@ fn unmet_closure_need_names_both_models() {
     let err = assert_clean_failure(&check_scene("unmet_laminar", "[closures.fluctuation]\ntype = \"drw\"\n"));
     assert!(err.contains("drw") && err.contains("laminar"), "{err}");
     // DRW is satisfied by a mixing length (Reynolds stress)
-    let ok = check_scene("met", "[closures.turbulence]\ntype = \"mixing_length\"\n[closures.fluctuation]\ntype = \"drw\"\n");
+    let ok =
+        check_scene("met", "[closures.turbulence]\ntype = \"mixing_length\"\n[closures.fluctuation]\ntype = \"drw\"\n");
     assert!(ok.status.success(), "{}", stderr(&ok));
 }
 
@@ -193,8 +234,16 @@ fn closure_eval_writes_inputs_then_outputs() {
     let input = write(&d, "in.csv", "re_p\n0.1\n1\n1000\n");
     let out = d.join("out.csv");
     let o = saltus(&[
-        "closure", "eval", "--family", "drag", "--model", "type = \"dallavalle\"", "--input",
-        input.to_str().unwrap(), "--output", out.to_str().unwrap(),
+        "closure",
+        "eval",
+        "--family",
+        "drag",
+        "--model",
+        "type = \"dallavalle\"",
+        "--input",
+        input.to_str().unwrap(),
+        "--output",
+        out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(&out).unwrap();
@@ -203,7 +252,16 @@ fn closure_eval_writes_inputs_then_outputs() {
     let row: Vec<f64> = lines.next().unwrap().split(',').map(|x| x.parse().unwrap()).collect();
     assert!((row[1] - (0.4 + 24.4 / 0.1)).abs() < 1e-9);
     // stdout without --output, inline-table model
-    let o = saltus(&["closure", "eval", "--family", "hindrance", "--model", "{type = \"richardson_zaki\", exponent = 2.0}", "--input", write(&d, "h.csv", "phi,re_p\n0.5,1\n").to_str().unwrap()]);
+    let o = saltus(&[
+        "closure",
+        "eval",
+        "--family",
+        "hindrance",
+        "--model",
+        "{type = \"richardson_zaki\", exponent = 2.0}",
+        "--input",
+        write(&d, "h.csv", "phi,re_p\n0.5,1\n").to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let s = stdout(&o);
     let last: f64 = s.lines().nth(1).unwrap().split(',').nth(2).unwrap().parse().unwrap();
@@ -214,13 +272,32 @@ fn closure_eval_writes_inputs_then_outputs() {
 fn closure_eval_kinetic_theory_and_granular() {
     let d = tmp_dir("eval_kt");
     let input = write(&d, "phi.csv", "phi\n0.01\n0.3\n0.55\n");
-    let o = saltus(&["closure", "eval", "--family", "kinetic_theory", "--model", "restitution = 0.7", "--input", input.to_str().unwrap()]);
+    let o = saltus(&[
+        "closure",
+        "eval",
+        "--family",
+        "kinetic_theory",
+        "--model",
+        "restitution = 0.7",
+        "--input",
+        input.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stdout(&o).starts_with("phi,g0,f1,f2,f3,f4,e_eff"), "{}", stdout(&o));
     let input = write(&d, "i.csv", "i\n0\n0.69\n");
-    let o = saltus(&["closure", "eval", "--family", "granular", "--model", "type = \"mu_i\"", "--input", input.to_str().unwrap()]);
+    let o = saltus(&[
+        "closure",
+        "eval",
+        "--family",
+        "granular",
+        "--model",
+        "type = \"mu_i\"",
+        "--input",
+        input.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let rows: Vec<Vec<f64>> = stdout(&o).lines().skip(1).map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
+    let rows: Vec<Vec<f64>> =
+        stdout(&o).lines().skip(1).map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
     assert!((rows[0][1] - 0.35).abs() < 1e-12, "mu(0) = mu_s");
     assert!((rows[1][1] - 0.5 * (0.35 + 0.97)).abs() < 1e-12, "mu(I0) = (mu_s + mu_2)/2");
 }
@@ -229,16 +306,61 @@ fn closure_eval_kinetic_theory_and_granular() {
 fn closure_eval_bad_input_is_clean() {
     let d = tmp_dir("eval_bad");
     let input = write(&d, "in.csv", "phi\n0.1\n");
-    let err = assert_clean_failure(&saltus(&["closure", "eval", "--family", "drag", "--model", "type = \"stokes\"", "--input", input.to_str().unwrap()]));
+    let err = assert_clean_failure(&saltus(&[
+        "closure",
+        "eval",
+        "--family",
+        "drag",
+        "--model",
+        "type = \"stokes\"",
+        "--input",
+        input.to_str().unwrap(),
+    ]));
     assert!(err.contains("re_p"), "{err}");
-    let err = assert_clean_failure(&saltus(&["closure", "eval", "--family", "drag", "--model", "type = \"stoke\"", "--input", input.to_str().unwrap()]));
+    let err = assert_clean_failure(&saltus(&[
+        "closure",
+        "eval",
+        "--family",
+        "drag",
+        "--model",
+        "type = \"stoke\"",
+        "--input",
+        input.to_str().unwrap(),
+    ]));
     assert!(err.contains("known") && err.contains("stokes"), "{err}");
     let bad = write(&d, "bad.csv", "re_p\nabc\n");
-    let err = assert_clean_failure(&saltus(&["closure", "eval", "--family", "drag", "--model", "type = \"stokes\"", "--input", bad.to_str().unwrap()]));
+    let err = assert_clean_failure(&saltus(&[
+        "closure",
+        "eval",
+        "--family",
+        "drag",
+        "--model",
+        "type = \"stokes\"",
+        "--input",
+        bad.to_str().unwrap(),
+    ]));
     assert!(err.contains("bad.csv") && err.contains("abc"), "{err}");
-    let err = assert_clean_failure(&saltus(&["closure", "eval", "--family", "viscosity", "--model", "type = \"einstein\"", "--input", write(&d, "p.csv", "phi\n1.5\n").to_str().unwrap()]));
+    let err = assert_clean_failure(&saltus(&[
+        "closure",
+        "eval",
+        "--family",
+        "viscosity",
+        "--model",
+        "type = \"einstein\"",
+        "--input",
+        write(&d, "p.csv", "phi\n1.5\n").to_str().unwrap(),
+    ]));
     assert!(err.contains("phi"), "{err}");
-    let err = assert_clean_failure(&saltus(&["closure", "eval", "--family", "drag", "--model", "type = = 1", "--input", input.to_str().unwrap()]));
+    let err = assert_clean_failure(&saltus(&[
+        "closure",
+        "eval",
+        "--family",
+        "drag",
+        "--model",
+        "type = = 1",
+        "--input",
+        input.to_str().unwrap(),
+    ]));
     assert!(err.contains("syntax"), "{err}");
 }
 
@@ -268,6 +390,8 @@ fn closure_plot_writes_png_and_csv_for_every_figure() {
 
 #[test]
 fn run_without_solver_is_a_clean_error() {
-    let err = assert_clean_failure(&check_scene("noop", "").status.success().then(|| saltus(&["run", "does/not/exist.toml"])).unwrap());
+    let err = assert_clean_failure(
+        &check_scene("noop", "").status.success().then(|| saltus(&["run", "does/not/exist.toml"])).unwrap(),
+    );
     assert!(err.contains("does/not/exist.toml"), "{err}");
 }

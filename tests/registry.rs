@@ -66,7 +66,8 @@ fn every_registered_model_has_a_documentation_section_with_its_source() {
             .lines()
             .position(|l| l.trim() == heading)
             .unwrap_or_else(|| panic!("{} lacks a section `{heading}`", page.display()));
-        let section: String = text.lines().skip(start + 1).take_while(|l| !l.starts_with("### ")).collect::<Vec<_>>().join("\n");
+        let section: String =
+            text.lines().skip(start + 1).take_while(|l| !l.starts_with("### ")).collect::<Vec<_>>().join("\n");
         let lower = section.to_lowercase();
         for word in ["source", "default", "range"] {
             assert!(lower.contains(word), "{}: section `{}` does not mention its {word}", page.display(), m.name);

@@ -88,16 +88,7 @@ pub enum Error {
 impl Error {
     /// Attach a file to a [`crate::ParamError`] raised under table `prefix`.
     pub fn from_param(file: impl Into<PathBuf>, prefix: &str, e: crate::ParamError) -> Self {
-        let key = if prefix.is_empty() {
-            e.key
-        } else {
-            format!("{prefix}.{}", e.key)
-        };
-        Error::OutOfRange {
-            file: file.into(),
-            key,
-            value: e.value,
-            allowed: e.allowed,
-        }
+        let key = if prefix.is_empty() { e.key } else { format!("{prefix}.{}", e.key) };
+        Error::OutOfRange { file: file.into(), key, value: e.value, allowed: e.allowed }
     }
 }

@@ -22,7 +22,7 @@ pub mod rng;
 pub mod scene;
 
 pub use closure::drag::DragLaw;
-pub use closure::fluctuation::{Fluctuation, FluctuationDraw, FlowScales, ParticleSlip, TurbulencePoint};
+pub use closure::fluctuation::{FlowScales, Fluctuation, FluctuationDraw, ParticleSlip, TurbulencePoint};
 pub use closure::granular::{
     GranularStress, KineticCoefficients, KineticTheory, LocalRheology, LocalState, SaltationInput,
 };

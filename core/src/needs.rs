@@ -22,13 +22,8 @@ pub enum Field {
 
 impl Field {
     /// Every field, in display order.
-    pub const ALL: [Field; 5] = [
-        Field::EddyViscosity,
-        Field::Tke,
-        Field::Omega,
-        Field::ReynoldsStress,
-        Field::GranularTemperature,
-    ];
+    pub const ALL: [Field; 5] =
+        [Field::EddyViscosity, Field::Tke, Field::Omega, Field::ReynoldsStress, Field::GranularTemperature];
 
     /// Short name used in messages and manifests.
     pub fn name(self) -> &'static str {
@@ -77,9 +72,7 @@ impl Needs {
 
     /// Fields of `self` not in `provided`.
     pub fn missing(self, provided: Needs) -> impl Iterator<Item = Field> {
-        Field::ALL
-            .into_iter()
-            .filter(move |f| self.contains(*f) && !provided.contains(*f))
+        Field::ALL.into_iter().filter(move |f| self.contains(*f) && !provided.contains(*f))
     }
 
     /// Iterate over the fields in the set.

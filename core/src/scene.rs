@@ -198,16 +198,8 @@ pub fn to_toml_table<T: Serialize + ?Sized>(v: &T) -> std::result::Result<String
 /// Parse TOML text into a table; syntax errors carry line and column.
 pub fn parse_table(text: &str, file: &Path) -> Result<toml::Table> {
     text.parse::<toml::Table>().map_err(|e| {
-        let (line, column) = e
-            .span()
-            .map(|s| line_col(text, s.start))
-            .unwrap_or((0, 0));
-        Error::Syntax {
-            file: file.to_path_buf(),
-            line,
-            column,
-            message: e.message().to_string(),
-        }
+        let (line, column) = e.span().map(|s| line_col(text, s.start)).unwrap_or((0, 0));
+        Error::Syntax { file: file.to_path_buf(), line, column, message: e.message().to_string() }
     })
 }
 
@@ -477,9 +469,8 @@ fn provider_sentence(field: Field, turbulence: &str) -> String {
 /// Apply one `KEY=VALUE` override to a raw scene table. VALUE is parsed as a TOML value
 /// (so `0.3`, `"text"`, `{type = "stokes"}` work); a bare word is taken as a string.
 pub fn apply_override(table: &mut toml::Table, spec: &str) -> Result<()> {
-    let (key, raw) = spec
-        .split_once('=')
-        .ok_or_else(|| Error::Invalid(format!("--set `{spec}`: expected KEY=VALUE")))?;
+    let (key, raw) =
+        spec.split_once('=').ok_or_else(|| Error::Invalid(format!("--set `{spec}`: expected KEY=VALUE")))?;
     let key = key.trim();
     let raw = raw.trim();
     let value = format!("v = {raw}")
@@ -493,9 +484,7 @@ pub fn apply_override(table: &mut toml::Table, spec: &str) -> Result<()> {
     }
     let mut cur = table;
     for p in &parts[..parts.len() - 1] {
-        let entry = cur
-            .entry(p.to_string())
-            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        let entry = cur.entry(p.to_string()).or_insert_with(|| toml::Value::Table(toml::Table::new()));
         cur = match entry {
             toml::Value::Table(t) => t,
             _ => return Err(Error::Invalid(format!("--set `{spec}`: `{p}` is not a table"))),

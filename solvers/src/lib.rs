@@ -5,6 +5,8 @@
 //! land, a scene that asks for one is refused with a clear message rather than a stub
 //! result.
 
+pub mod column;
+
 use std::fmt;
 use std::path::Path;
 
@@ -30,17 +32,12 @@ impl fmt::Display for RunSummary {
 /// Run `scene`, writing its outputs into `out`.
 pub fn run(scene: &Scene, _out: &Path, _progress: bool) -> Result<RunSummary, Error> {
     let file = scene.path.display();
-    let solver = scene
-        .solver
-        .as_ref()
-        .and_then(|t| t.get("type"))
-        .and_then(|v| v.as_str())
-        .ok_or_else(|| {
-            Error::Invalid(format!(
-                "{file}: key `solver.type`: missing; known solvers: {}",
-                SOLVERS.map(|s| s.0).join(", ")
-            ))
-        })?;
+    let solver = scene.solver.as_ref().and_then(|t| t.get("type")).and_then(|v| v.as_str()).ok_or_else(|| {
+        Error::Invalid(format!(
+            "{file}: key `solver.type`: missing; known solvers: {}",
+            SOLVERS.map(|s| s.0).join(", ")
+        ))
+    })?;
     match SOLVERS.iter().find(|s| s.0 == solver) {
         None => Err(Error::Invalid(format!(
             "{file}: key `solver.type`: unknown solver `{solver}`; known: {}",

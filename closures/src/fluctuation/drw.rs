@@ -4,8 +4,8 @@ use rand_distr::{Distribution, StandardNormal};
 use saltus_core::closure::Family;
 use saltus_core::rng::Rng;
 use saltus_core::{
-    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Needs, Param,
-    ParamRange, ParticleSlip, TurbulencePoint,
+    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Needs, Param, ParamRange, ParticleSlip,
+    TurbulencePoint,
 };
 use serde::{Deserialize, Serialize};
 
@@ -89,13 +89,7 @@ impl Describe for DiscreteRandomWalk {
     }
     fn params(&self) -> Vec<Param> {
         match self.period {
-            Some(p) => vec![Param::new(
-                "period",
-                p,
-                ParamRange::positive(),
-                "s",
-                "fixed redraw period",
-            )],
+            Some(p) => vec![Param::new("period", p, ParamRange::positive(), "s", "fixed redraw period")],
             None => Vec::new(),
         }
     }
@@ -107,21 +101,12 @@ impl Fluctuation for DiscreteRandomWalk {
         Needs::of(&[Field::ReynoldsStress])
     }
 
-    fn draw(
-        &self,
-        t: &TurbulencePoint,
-        _p: &ParticleSlip,
-        s: &FlowScales,
-        rng: &mut Rng,
-    ) -> FluctuationDraw {
+    fn draw(&self, t: &TurbulencePoint, _p: &ParticleSlip, s: &FlowScales, rng: &mut Rng) -> FluctuationDraw {
         let sigma = Self::sigma(t);
         let l1: f64 = StandardNormal.sample(rng);
         let l2: f64 = StandardNormal.sample(rng);
         let uz = sigma * l1;
-        FluctuationDraw {
-            u: [-uz + sigma * l2, 0.0, uz],
-            duration: self.turnover_time(s),
-        }
+        FluctuationDraw { u: [-uz + sigma * l2, 0.0, uz], duration: self.turnover_time(s) }
     }
 
     fn diffusivity(&self, t: &TurbulencePoint, s: &FlowScales) -> f64 {
@@ -148,16 +133,10 @@ mod tests {
     const SIGMA: f64 = 0.05;
 
     fn point() -> TurbulencePoint {
-        TurbulencePoint {
-            reynolds_stress: SIGMA * SIGMA,
-            ..TurbulencePoint::default()
-        }
+        TurbulencePoint { reynolds_stress: SIGMA * SIGMA, ..TurbulencePoint::default() }
     }
     fn scales() -> FlowScales {
-        FlowScales {
-            depth: 0.1,
-            bulk_velocity: 1.0,
-        }
+        FlowScales { depth: 0.1, bulk_velocity: 1.0 }
     }
 
     #[test]
@@ -185,21 +164,9 @@ mod tests {
         let tol = |c: f64| 4.0 * c * (1.0 / nf).sqrt();
         assert!((sz / nf).abs() < tol(SIGMA));
         assert!((sx / nf).abs() < tol(SIGMA * 2f64.sqrt()));
-        assert!(
-            (szz / nf - s2).abs() < tol(s2 * 2f64.sqrt()),
-            "<u_z^2> = {}",
-            szz / nf
-        );
-        assert!(
-            (sxz / nf + s2).abs() < tol(s2 * 3f64.sqrt()),
-            "<u_x u_z> = {}",
-            sxz / nf
-        );
-        assert!(
-            (sxx / nf - 2.0 * s2).abs() < tol(s2 * 8f64.sqrt()),
-            "<u_x^2> = {}",
-            sxx / nf
-        );
+        assert!((szz / nf - s2).abs() < tol(s2 * 2f64.sqrt()), "<u_z^2> = {}", szz / nf);
+        assert!((sxz / nf + s2).abs() < tol(s2 * 3f64.sqrt()), "<u_x u_z> = {}", sxz / nf);
+        assert!((sxx / nf - 2.0 * s2).abs() < tol(s2 * 8f64.sqrt()), "<u_x^2> = {}", sxx / nf);
     }
 
     #[test]
@@ -207,9 +174,7 @@ mod tests {
         let m = DiscreteRandomWalk::default();
         let run = |k: u64| {
             let mut rng = stream(7, k);
-            (0..16)
-                .map(|_| m.draw(&point(), &ParticleSlip::default(), &scales(), &mut rng))
-                .collect::<Vec<_>>()
+            (0..16).map(|_| m.draw(&point(), &ParticleSlip::default(), &scales(), &mut rng)).collect::<Vec<_>>()
         };
         assert_eq!(run(3), run(3));
         assert_ne!(run(3), run(4));
@@ -224,35 +189,21 @@ mod tests {
         let m = DiscreteRandomWalk::default();
         let tau = 0.1;
         let t_end = 100.0 * tau;
-        let dz = displacements(
-            &m,
-            &point(),
-            &scales(),
-            10_000,
-            t_end,
-            42,
-            &|r: &mut Rng| r.gen::<f64>(),
-        );
+        let dz = displacements(&m, &point(), &scales(), 10_000, t_end, 42, &|r: &mut Rng| r.gen::<f64>());
         let sq: Vec<f64> = dz.iter().map(|z| z * z / (2.0 * t_end)).collect();
         let (est, se) = mean_se(&sq);
         let d = m.diffusivity(&point(), &scales());
         assert_relative_eq!(d, SIGMA * SIGMA * tau / 2.0, max_relative = 1e-14);
         let expected = d * (1.0 - tau / (3.0 * t_end));
         assert!(se < 0.02 * expected);
-        assert!(
-            (est - expected).abs() < 4.0 * se,
-            "D_sim = {est} +- {se}, D = {expected}"
-        );
+        assert!((est - expected).abs() < 4.0 * se, "D_sim = {est} +- {se}, D = {expected}");
     }
 
     #[test]
     fn period_overrides_turnover_and_round_trips() {
         let m = DiscreteRandomWalk { period: Some(0.5) };
         assert_eq!(m.turnover_time(&scales()), 0.5);
-        assert_eq!(
-            m.diffusivity(&point(), &scales()),
-            SIGMA * SIGMA * 0.5 / 2.0
-        );
+        assert_eq!(m.diffusivity(&point(), &scales()), SIGMA * SIGMA * 0.5 / 2.0);
         let b: Box<dyn Fluctuation> = Box::new(m.clone());
         let text = saltus_core::scene::to_toml_table(&b).unwrap();
         let back: Box<dyn Fluctuation> = saltus_core::scene::closure_from_value(
@@ -263,15 +214,11 @@ mod tests {
         )
         .unwrap();
         assert_eq!(saltus_core::scene::to_toml_table(&back).unwrap(), text);
-        assert_eq!(
-            back.diffusivity(&point(), &scales()),
-            m.diffusivity(&point(), &scales())
-        );
+        assert_eq!(back.diffusivity(&point(), &scales()), m.diffusivity(&point(), &scales()));
         assert!(text.contains("period = 0.5"));
-        let default_text = saltus_core::scene::to_toml_table(
-            &(Box::new(DiscreteRandomWalk::default()) as Box<dyn Fluctuation>),
-        )
-        .unwrap();
+        let default_text =
+            saltus_core::scene::to_toml_table(&(Box::new(DiscreteRandomWalk::default()) as Box<dyn Fluctuation>))
+                .unwrap();
         assert!(!default_text.contains("period"));
     }
 
@@ -280,22 +227,10 @@ mod tests {
         let m = DiscreteRandomWalk::default();
         let mut rng = stream(1, 1);
         for s in [
-            FlowScales {
-                depth: 0.1,
-                bulk_velocity: 0.0,
-            },
-            FlowScales {
-                depth: 0.0,
-                bulk_velocity: 1.0,
-            },
-            FlowScales {
-                depth: 0.0,
-                bulk_velocity: 0.0,
-            },
-            FlowScales {
-                depth: f64::NAN,
-                bulk_velocity: 1.0,
-            },
+            FlowScales { depth: 0.1, bulk_velocity: 0.0 },
+            FlowScales { depth: 0.0, bulk_velocity: 1.0 },
+            FlowScales { depth: 0.0, bulk_velocity: 0.0 },
+            FlowScales { depth: f64::NAN, bulk_velocity: 1.0 },
         ] {
             let d = m.draw(&point(), &ParticleSlip::default(), &s, &mut rng);
             assert_eq!(d.duration, f64::INFINITY);
@@ -303,19 +238,10 @@ mod tests {
             assert_eq!(m.diffusivity(&point(), &s), 0.0);
         }
         // reverse flow: the turnover time uses |U|
-        assert_eq!(
-            m.turnover_time(&FlowScales {
-                depth: 0.1,
-                bulk_velocity: -1.0
-            }),
-            0.1
-        );
+        assert_eq!(m.turnover_time(&FlowScales { depth: 0.1, bulk_velocity: -1.0 }), 0.1);
         // negative or NaN stress: no fluctuation
         for rs in [-1e-3, f64::NAN] {
-            let tp = TurbulencePoint {
-                reynolds_stress: rs,
-                ..TurbulencePoint::default()
-            };
+            let tp = TurbulencePoint { reynolds_stress: rs, ..TurbulencePoint::default() };
             let d = m.draw(&tp, &ParticleSlip::default(), &scales(), &mut rng);
             assert_eq!(d.u, [0.0; 3]);
             assert_eq!(m.diffusivity(&tp, &scales()), 0.0);
@@ -324,25 +250,10 @@ mod tests {
 
     #[test]
     fn validate_names_period_and_needs_reynolds_stress() {
-        assert_eq!(
-            DiscreteRandomWalk { period: Some(0.0) }
-                .validate()
-                .unwrap_err()
-                .key,
-            "period"
-        );
-        assert_eq!(
-            DiscreteRandomWalk { period: Some(-1.0) }
-                .validate()
-                .unwrap_err()
-                .key,
-            "period"
-        );
+        assert_eq!(DiscreteRandomWalk { period: Some(0.0) }.validate().unwrap_err().key, "period");
+        assert_eq!(DiscreteRandomWalk { period: Some(-1.0) }.validate().unwrap_err().key, "period");
         assert!(DiscreteRandomWalk::default().validate().is_ok());
-        assert_eq!(
-            DiscreteRandomWalk::default().needs(),
-            Needs::of(&[Field::ReynoldsStress])
-        );
+        assert_eq!(DiscreteRandomWalk::default().needs(), Needs::of(&[Field::ReynoldsStress]));
         assert!(toml::from_str::<DiscreteRandomWalk>("tau = 1.0").is_err());
     }
 

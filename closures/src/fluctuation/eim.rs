@@ -4,8 +4,8 @@ use rand_distr::{Distribution, Exp1, StandardNormal};
 use saltus_core::closure::Family;
 use saltus_core::rng::Rng;
 use saltus_core::{
-    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Needs, Param,
-    ParamRange, ParticleSlip, TurbulencePoint,
+    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Needs, Param, ParamRange, ParticleSlip,
+    TurbulencePoint,
 };
 use serde::{Deserialize, Serialize};
 
@@ -35,7 +35,8 @@ use serde::{Deserialize, Serialize};
 /// eddy viscosity nu_t = k/omega (Cheng eq 29 with alpha* = 1), the Schmidt number is
 /// Sc = nu_t / D = 9 C_mu / C0 = 0.27 for the defaults (Chassagne et al. 2023 use
 /// Sc = 1/3 in their drift velocity, eq 4.4). Eddy crossing (t_c < t_e) and particle
-/// inertia lower the particle diffusivity below this value.
+/// inertia lower the particle diffusivity below this value: Cheng's sheet-flow runs
+/// (figure 8c) give Sc = 1.5, 1, 0.75, 0.65 for C0 = 2, 3, 6, 8.
 ///
 /// Decisions:
 /// * Random numbers: three standard normals (x, y, z) then one standard exponential E
@@ -58,10 +59,7 @@ pub struct EddyInteraction {
 
 impl Default for EddyInteraction {
     fn default() -> Self {
-        Self {
-            c0: 3.0,
-            c_mu: 0.09,
-        }
+        Self { c0: 3.0, c_mu: 0.09 }
     }
 }
 
@@ -99,20 +97,8 @@ impl Describe for EddyInteraction {
     }
     fn params(&self) -> Vec<Param> {
         vec![
-            Param::new(
-                "c0",
-                self.c0,
-                ParamRange::open_closed(0.0, 20.0),
-                "-",
-                "eddy lifetime coefficient C0",
-            ),
-            Param::new(
-                "c_mu",
-                self.c_mu,
-                ParamRange::open_closed(0.0, 1.0),
-                "-",
-                "k-omega coefficient C_mu",
-            ),
+            Param::new("c0", self.c0, ParamRange::open_closed(0.0, 20.0), "-", "eddy lifetime coefficient C0"),
+            Param::new("c_mu", self.c_mu, ParamRange::open_closed(0.0, 1.0), "-", "k-omega coefficient C_mu"),
         ]
     }
 }
@@ -123,39 +109,20 @@ impl Fluctuation for EddyInteraction {
         Needs::of(&[Field::Tke, Field::Omega])
     }
 
-    fn draw(
-        &self,
-        t: &TurbulencePoint,
-        p: &ParticleSlip,
-        _s: &FlowScales,
-        rng: &mut Rng,
-    ) -> FluctuationDraw {
-        let n: [f64; 3] = [
-            StandardNormal.sample(rng),
-            StandardNormal.sample(rng),
-            StandardNormal.sample(rng),
-        ];
+    fn draw(&self, t: &TurbulencePoint, p: &ParticleSlip, _s: &FlowScales, rng: &mut Rng) -> FluctuationDraw {
+        let n: [f64; 3] = [StandardNormal.sample(rng), StandardNormal.sample(rng), StandardNormal.sample(rng)];
         let e: f64 = Exp1.sample(rng);
         let Some(tl) = self.lagrangian_time(t.omega) else {
-            return FluctuationDraw {
-                u: [0.0; 3],
-                duration: f64::INFINITY,
-            };
+            return FluctuationDraw { u: [0.0; 3], duration: f64::INFINITY };
         };
         let t_e = self.c0 * tl * e;
         if !(t.k.is_finite() && t.k > 0.0) {
-            return FluctuationDraw {
-                u: [0.0; 3],
-                duration: t_e,
-            };
+            return FluctuationDraw { u: [0.0; 3], duration: t_e };
         }
         let s = (2.0 * t.k / 3.0).sqrt();
         let l_e = t_e * s;
         let duration = Self::crossing_time(l_e, p).map_or(t_e, |t_c| t_c.min(t_e));
-        FluctuationDraw {
-            u: [s * n[0], s * n[1], s * n[2]],
-            duration,
-        }
+        FluctuationDraw { u: [s * n[0], s * n[1], s * n[2]], duration }
     }
 
     fn diffusivity(&self, t: &TurbulencePoint, _s: &FlowScales) -> f64 {
@@ -180,12 +147,7 @@ mod tests {
     const OMEGA: f64 = 10.0;
 
     fn point() -> TurbulencePoint {
-        TurbulencePoint {
-            k: K,
-            omega: OMEGA,
-            nu_t: K / OMEGA,
-            reynolds_stress: 0.0,
-        }
+        TurbulencePoint { k: K, omega: OMEGA, nu_t: K / OMEGA, reynolds_stress: 0.0 }
     }
     fn no_slip() -> ParticleSlip {
         ParticleSlip::default()
@@ -209,9 +171,7 @@ mod tests {
         let mut cross = [0.0; 3];
         let mut energy = 0.0;
         for _ in 0..n {
-            let u = m
-                .draw(&point(), &no_slip(), &FlowScales::default(), &mut rng)
-                .u;
+            let u = m.draw(&point(), &no_slip(), &FlowScales::default(), &mut rng).u;
             for i in 0..3 {
                 sum[i] += u[i];
                 sq[i] += u[i] * u[i];
@@ -222,22 +182,10 @@ mod tests {
         let tol = |c: f64| 4.0 * c / nf.sqrt();
         for i in 0..3 {
             assert!((sum[i] / nf).abs() < tol(s2.sqrt()));
-            assert!(
-                (sq[i] / nf - s2).abs() < tol(s2 * 2f64.sqrt()),
-                "<u_{i}^2> = {}",
-                sq[i] / nf
-            );
-            assert!(
-                (cross[i] / nf).abs() < tol(s2),
-                "cross {i} = {}",
-                cross[i] / nf
-            );
+            assert!((sq[i] / nf - s2).abs() < tol(s2 * 2f64.sqrt()), "<u_{i}^2> = {}", sq[i] / nf);
+            assert!((cross[i] / nf).abs() < tol(s2), "cross {i} = {}", cross[i] / nf);
         }
-        assert!(
-            (energy / nf - 2.0 * K).abs() < tol(s2 * 6f64.sqrt()),
-            "<u_i u_i> = {}",
-            energy / nf
-        );
+        assert!((energy / nf - 2.0 * K).abs() < tol(s2 * 6f64.sqrt()), "<u_i u_i> = {}", energy / nf);
     }
 
     #[test]
@@ -249,18 +197,11 @@ mod tests {
         let n = 200_000;
         let nf = n as f64;
         let mut rng = stream(36, 0);
-        let d: Vec<f64> = (0..n)
-            .map(|_| {
-                m.draw(&point(), &no_slip(), &FlowScales::default(), &mut rng)
-                    .duration
-            })
-            .collect();
+        let d: Vec<f64> =
+            (0..n).map(|_| m.draw(&point(), &no_slip(), &FlowScales::default(), &mut rng).duration).collect();
         let tau = lifetime_mean();
         let mean = d.iter().sum::<f64>() / nf;
-        assert!(
-            (mean - tau).abs() < 4.0 * tau / nf.sqrt(),
-            "mean lifetime {mean} vs {tau}"
-        );
+        assert!((mean - tau).abs() < 4.0 * tau / nf.sqrt(), "mean lifetime {mean} vs {tau}");
         let p = (-1.0f64).exp();
         let above = d.iter().filter(|&&t| t > tau).count() as f64 / nf;
         assert!((above - p).abs() < 4.0 * (p * (1.0 - p) / nf).sqrt());
@@ -271,10 +212,7 @@ mod tests {
         // Same stream with and without slip: same velocities and lifetimes; with slip the
         // duration is min(t_e, t_c) with t_c from eq 37 when l_e < slip t_p.
         let m = EddyInteraction::default();
-        let slip = ParticleSlip {
-            slip: 0.5,
-            response_time: 0.2,
-        };
+        let slip = ParticleSlip { slip: 0.5, response_time: 0.2 };
         let reach = 0.5 * 0.2;
         let s = (2.0 * K / 3.0).sqrt();
         let (mut a, mut b) = (stream(37, 1), stream(37, 1));
@@ -295,13 +233,7 @@ mod tests {
         }
         assert!(shortened > 5_000, "crossing rarely active: {shortened}");
         // infinite response time: straight crossing at the slip speed
-        let t_c = EddyInteraction::crossing_time(
-            0.01,
-            &ParticleSlip {
-                slip: 0.5,
-                response_time: f64::INFINITY,
-            },
-        );
+        let t_c = EddyInteraction::crossing_time(0.01, &ParticleSlip { slip: 0.5, response_time: f64::INFINITY });
         assert_eq!(t_c, Some(0.02));
         assert_eq!(EddyInteraction::crossing_time(0.2, &slip), None);
         assert_eq!(EddyInteraction::crossing_time(0.01, &no_slip()), None);
@@ -310,15 +242,10 @@ mod tests {
     #[test]
     fn same_stream_same_draws_other_stream_differs() {
         let m = EddyInteraction::default();
-        let slip = ParticleSlip {
-            slip: 0.1,
-            response_time: 0.05,
-        };
+        let slip = ParticleSlip { slip: 0.1, response_time: 0.05 };
         let run = |k: u64| {
             let mut rng = stream(11, k);
-            (0..16)
-                .map(|_| m.draw(&point(), &slip, &FlowScales::default(), &mut rng))
-                .collect::<Vec<_>>()
+            (0..16).map(|_| m.draw(&point(), &slip, &FlowScales::default(), &mut rng)).collect::<Vec<_>>()
         };
         assert_eq!(run(5), run(5));
         assert_ne!(run(5), run(6));
@@ -341,10 +268,7 @@ mod tests {
         assert_relative_eq!(d, 2.0 * K / 3.0 * tau, max_relative = 1e-14);
         let expected = d * (1.0 - tau / t_end * (1.0 - (-t_end / tau).exp()));
         assert!(se < 0.02 * expected);
-        assert!(
-            (est - expected).abs() < 4.0 * se,
-            "D_sim = {est} +- {se}, D = {expected}"
-        );
+        assert!((est - expected).abs() < 4.0 * se, "D_sim = {est} +- {se}, D = {expected}");
     }
 
     #[test]
@@ -358,33 +282,16 @@ mod tests {
     fn degenerate_turbulence_gives_no_nan() {
         let m = EddyInteraction::default();
         let s = FlowScales::default();
-        let slip = ParticleSlip {
-            slip: 0.5,
-            response_time: 0.2,
-        };
+        let slip = ParticleSlip { slip: 0.5, response_time: 0.2 };
         let mut rng = stream(3, 3);
         for omega in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-            let tp = TurbulencePoint {
-                k: K,
-                omega,
-                ..TurbulencePoint::default()
-            };
+            let tp = TurbulencePoint { k: K, omega, ..TurbulencePoint::default() };
             let d = m.draw(&tp, &slip, &s, &mut rng);
-            assert_eq!(
-                d,
-                FluctuationDraw {
-                    u: [0.0; 3],
-                    duration: f64::INFINITY
-                }
-            );
+            assert_eq!(d, FluctuationDraw { u: [0.0; 3], duration: f64::INFINITY });
             assert_eq!(m.diffusivity(&tp, &s), 0.0);
         }
         for k in [0.0, -1e-3, f64::NAN] {
-            let tp = TurbulencePoint {
-                k,
-                omega: OMEGA,
-                ..TurbulencePoint::default()
-            };
+            let tp = TurbulencePoint { k, omega: OMEGA, ..TurbulencePoint::default() };
             let d = m.draw(&tp, &slip, &s, &mut rng);
             assert_eq!(d.u, [0.0; 3]);
             assert!(d.duration.is_finite() && d.duration >= 0.0);
@@ -394,51 +301,12 @@ mod tests {
 
     #[test]
     fn validate_names_the_key() {
-        assert_eq!(
-            EddyInteraction {
-                c0: 0.0,
-                ..EddyInteraction::default()
-            }
-            .validate()
-            .unwrap_err()
-            .key,
-            "c0"
-        );
-        assert_eq!(
-            EddyInteraction {
-                c0: -3.0,
-                ..EddyInteraction::default()
-            }
-            .validate()
-            .unwrap_err()
-            .key,
-            "c0"
-        );
-        assert_eq!(
-            EddyInteraction {
-                c0: 21.0,
-                ..EddyInteraction::default()
-            }
-            .validate()
-            .unwrap_err()
-            .key,
-            "c0"
-        );
-        assert_eq!(
-            EddyInteraction {
-                c_mu: 0.0,
-                ..EddyInteraction::default()
-            }
-            .validate()
-            .unwrap_err()
-            .key,
-            "c_mu"
-        );
+        assert_eq!(EddyInteraction { c0: 0.0, ..EddyInteraction::default() }.validate().unwrap_err().key, "c0");
+        assert_eq!(EddyInteraction { c0: -3.0, ..EddyInteraction::default() }.validate().unwrap_err().key, "c0");
+        assert_eq!(EddyInteraction { c0: 21.0, ..EddyInteraction::default() }.validate().unwrap_err().key, "c0");
+        assert_eq!(EddyInteraction { c_mu: 0.0, ..EddyInteraction::default() }.validate().unwrap_err().key, "c_mu");
         assert!(EddyInteraction::default().validate().is_ok());
-        assert_eq!(
-            EddyInteraction::default().needs(),
-            Needs::of(&[Field::Tke, Field::Omega])
-        );
+        assert_eq!(EddyInteraction::default().needs(), Needs::of(&[Field::Tke, Field::Omega]));
         assert!(toml::from_str::<EddyInteraction>("C0 = 3").is_err());
     }
 

@@ -63,8 +63,6 @@ pub(crate) mod sim {
 mod tests {
     #[test]
     fn every_fluctuation_model_round_trips() {
-        crate::testing::assert_round_trip::<dyn saltus_core::Fluctuation>(
-            saltus_core::closure::Family::Fluctuation,
-        );
+        crate::testing::assert_round_trip::<dyn saltus_core::Fluctuation>(saltus_core::closure::Family::Fluctuation);
     }
 }

@@ -3,8 +3,7 @@
 use saltus_core::closure::Family;
 use saltus_core::rng::Rng;
 use saltus_core::{
-    register_model, Describe, FlowScales, Fluctuation, FluctuationDraw, Needs, ParticleSlip,
-    TurbulencePoint,
+    register_model, Describe, FlowScales, Fluctuation, FluctuationDraw, Needs, ParticleSlip, TurbulencePoint,
 };
 use serde::{Deserialize, Serialize};
 
@@ -44,17 +43,8 @@ impl Fluctuation for NoFluctuation {
         false
     }
 
-    fn draw(
-        &self,
-        _t: &TurbulencePoint,
-        _p: &ParticleSlip,
-        _s: &FlowScales,
-        _rng: &mut Rng,
-    ) -> FluctuationDraw {
-        FluctuationDraw {
-            u: [0.0; 3],
-            duration: f64::INFINITY,
-        }
+    fn draw(&self, _t: &TurbulencePoint, _p: &ParticleSlip, _s: &FlowScales, _rng: &mut Rng) -> FluctuationDraw {
+        FluctuationDraw { u: [0.0; 3], duration: f64::INFINITY }
     }
 
     fn diffusivity(&self, _t: &TurbulencePoint, _s: &FlowScales) -> f64 {
@@ -73,29 +63,12 @@ mod tests {
     #[test]
     fn draws_nothing_forever_and_consumes_no_random_number() {
         let m = NoFluctuation::default();
-        let tp = TurbulencePoint {
-            k: 1.0,
-            omega: 10.0,
-            nu_t: 0.1,
-            reynolds_stress: 0.01,
-        };
-        let s = FlowScales {
-            depth: 0.1,
-            bulk_velocity: 1.0,
-        };
-        let p = ParticleSlip {
-            slip: 0.1,
-            response_time: 0.01,
-        };
+        let tp = TurbulencePoint { k: 1.0, omega: 10.0, nu_t: 0.1, reynolds_stress: 0.01 };
+        let s = FlowScales { depth: 0.1, bulk_velocity: 1.0 };
+        let p = ParticleSlip { slip: 0.1, response_time: 0.01 };
         let mut a = stream(1, 0);
         let d = m.draw(&tp, &p, &s, &mut a);
-        assert_eq!(
-            d,
-            FluctuationDraw {
-                u: [0.0; 3],
-                duration: f64::INFINITY
-            }
-        );
+        assert_eq!(d, FluctuationDraw { u: [0.0; 3], duration: f64::INFINITY });
         assert_eq!(a.next_u64(), stream(1, 0).next_u64());
         assert_eq!(m.diffusivity(&tp, &s), 0.0);
         let mut out = [1.0; 3];

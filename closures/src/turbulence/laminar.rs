@@ -81,10 +81,7 @@ mod tests {
         let lam = Laminar::default();
         assert!(lam.provides().is_empty());
         let drw_needs = Needs::of(&[Field::ReynoldsStress]);
-        assert_eq!(
-            drw_needs.missing(lam.provides()).collect::<Vec<_>>(),
-            vec![Field::ReynoldsStress]
-        );
+        assert_eq!(drw_needs.missing(lam.provides()).collect::<Vec<_>>(), vec![Field::ReynoldsStress]);
         assert!(lam.validate().is_ok());
         assert!(lam.transported().is_empty());
     }

@@ -1,9 +1,7 @@
 //! Algebraic mixing-length turbulence closure (Prandtl, Li & Sawamoto, Berzi & Fraccarollo).
 
 use saltus_core::closure::Family;
-use saltus_core::{
-    register_model, ColumnView, Describe, Field, Needs, Param, ParamRange, Turbulence,
-};
+use saltus_core::{register_model, ColumnView, Describe, Field, Needs, Param, ParamRange, Turbulence};
 use serde::{Deserialize, Serialize};
 
 /// Which mixing-length profile [`MixingLength`] uses.
@@ -103,20 +101,14 @@ impl Describe for MixingLength {
     fn source(&self) -> &'static str {
         match self.form {
             MixingLengthForm::Prandtl => "Prandtl; Chassagne et al. 2023 eqs 2.7-2.8a",
-            MixingLengthForm::LiSawamoto => {
-                "Chassagne et al. 2023 eqs 2.7-2.8; Maurin et al. 2015 eqs 4-5"
-            }
-            MixingLengthForm::BerziFraccarollo => {
-                "Chassagne et al. 2023 eqs 2.8a and 4.2 (Berzi & Fraccarollo 2015)"
-            }
+            MixingLengthForm::LiSawamoto => "Chassagne et al. 2023 eqs 2.7-2.8; Maurin et al. 2015 eqs 4-5",
+            MixingLengthForm::BerziFraccarollo => "Chassagne et al. 2023 eqs 2.8a and 4.2 (Berzi & Fraccarollo 2015)",
         }
     }
     fn equation(&self) -> &'static str {
         match self.form {
             MixingLengthForm::Prandtl => "nu_t = l^2 |du/dz|, l = kappa z",
-            MixingLengthForm::LiSawamoto => {
-                "nu_t = l^2 |du/dz|, l = kappa int_0^z (1 - phi/phi_max) dz'"
-            }
+            MixingLengthForm::LiSawamoto => "nu_t = l^2 |du/dz|, l = kappa int_0^z (1 - phi/phi_max) dz'",
             MixingLengthForm::BerziFraccarollo => {
                 "nu_t = l^2 |du/dz|, l = max(coefficient d (phi_max - phi)^exponent, floor d)"
             }
@@ -124,13 +116,7 @@ impl Describe for MixingLength {
     }
     fn params(&self) -> Vec<Param> {
         vec![
-            Param::new(
-                "kappa",
-                self.kappa,
-                ParamRange::open_closed(0.0, 1.0),
-                "-",
-                "von Karman constant",
-            ),
+            Param::new("kappa", self.kappa, ParamRange::open_closed(0.0, 1.0), "-", "von Karman constant"),
             Param::new(
                 "phi_max",
                 self.phi_max,
@@ -197,12 +183,7 @@ impl Turbulence for MixingLength {
     }
 }
 
-register_model!(
-    Family::Turbulence,
-    "mixing_length",
-    Turbulence,
-    MixingLength
-);
+register_model!(Family::Turbulence, "mixing_length", Turbulence, MixingLength);
 
 #[cfg(test)]
 mod tests {
@@ -218,25 +199,14 @@ mod tests {
 
     fn lengths(m: &MixingLength, z: &[f64], dz: &[f64], phi: &[f64]) -> Vec<f64> {
         let dudz = vec![1.0; z.len()];
-        let col = ColumnView {
-            z,
-            dz,
-            phi,
-            dudz: &dudz,
-            diameter: D,
-            nu_f: 1e-6,
-            transported: &[],
-        };
+        let col = ColumnView { z, dz, phi, dudz: &dudz, diameter: D, nu_f: 1e-6, transported: &[] };
         let mut out = vec![f64::NAN; z.len()];
         m.mixing_length(&col, &mut out);
         out
     }
 
     fn with_form(form: MixingLengthForm) -> MixingLength {
-        MixingLength {
-            form,
-            ..MixingLength::default()
-        }
+        MixingLength { form, ..MixingLength::default() }
     }
 
     #[test]
@@ -256,16 +226,10 @@ mod tests {
         let m = MixingLength::default();
         let (z, dz) = uniform(100, 1e-3);
         let zb = 20.0 * 1e-3;
-        let phi: Vec<f64> = z
-            .iter()
-            .map(|&zi| if zi < zb { m.phi_max } else { 0.0 })
-            .collect();
+        let phi: Vec<f64> = z.iter().map(|&zi| if zi < zb { m.phi_max } else { 0.0 }).collect();
         for (l, zi) in lengths(&m, &z, &dz, &phi).iter().zip(&z) {
             let exact = 0.41 * (zi - zb).max(0.0);
-            assert!(
-                (l - exact).abs() <= 1e-14 * 0.41 * zi,
-                "z = {zi}: {l} vs {exact}"
-            );
+            assert!((l - exact).abs() <= 1e-14 * 0.41 * zi, "z = {zi}: {l} vs {exact}");
         }
     }
 
@@ -295,11 +259,7 @@ mod tests {
     #[test]
     fn berzi_fraccarollo_floor_and_cap() {
         let m = with_form(MixingLengthForm::BerziFraccarollo);
-        assert_relative_eq!(
-            m.berzi_fraccarollo(0.0, D),
-            3.0 * D * 0.635f64.powi(3),
-            max_relative = 1e-14
-        );
+        assert_relative_eq!(m.berzi_fraccarollo(0.0, D), 3.0 * D * 0.635f64.powi(3), max_relative = 1e-14);
         assert_eq!(m.berzi_fraccarollo(0.635, D), 0.2 * D);
         assert_eq!(m.berzi_fraccarollo(0.8, D), 0.2 * D);
         assert_eq!(m.berzi_fraccarollo(0.5, D), 0.2 * D); // 3 * 0.135^3 = 0.0074 < 0.2
@@ -312,37 +272,17 @@ mod tests {
 
     #[test]
     fn validate_names_the_key() {
-        let bad = MixingLength {
-            kappa: 0.0,
-            ..MixingLength::default()
-        };
+        let bad = MixingLength { kappa: 0.0, ..MixingLength::default() };
         assert_eq!(bad.validate().unwrap_err().key, "kappa");
-        let bad = MixingLength {
-            kappa: -0.4,
-            ..MixingLength::default()
-        };
+        let bad = MixingLength { kappa: -0.4, ..MixingLength::default() };
         assert_eq!(bad.validate().unwrap_err().key, "kappa");
-        let bad = MixingLength {
-            phi_max: 1.0,
-            ..MixingLength::default()
-        };
+        let bad = MixingLength { phi_max: 1.0, ..MixingLength::default() };
         assert_eq!(bad.validate().unwrap_err().key, "phi_max");
-        let bad = MixingLength {
-            phi_max: 0.0,
-            ..MixingLength::default()
-        };
+        let bad = MixingLength { phi_max: 0.0, ..MixingLength::default() };
         assert_eq!(bad.validate().unwrap_err().key, "phi_max");
-        let bad = MixingLength {
-            floor: -0.1,
-            ..MixingLength::default()
-        };
+        let bad = MixingLength { floor: -0.1, ..MixingLength::default() };
         assert_eq!(bad.validate().unwrap_err().key, "floor");
-        assert!(MixingLength {
-            kappa: 1.0,
-            ..MixingLength::default()
-        }
-        .validate()
-        .is_ok());
+        assert!(MixingLength { kappa: 1.0, ..MixingLength::default() }.validate().is_ok());
     }
 
     #[test]

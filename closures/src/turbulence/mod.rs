@@ -11,8 +11,6 @@ pub use mixing_length::{MixingLength, MixingLengthForm};
 mod tests {
     #[test]
     fn every_turbulence_model_round_trips() {
-        crate::testing::assert_round_trip::<dyn saltus_core::Turbulence>(
-            saltus_core::closure::Family::Turbulence,
-        );
+        crate::testing::assert_round_trip::<dyn saltus_core::Turbulence>(saltus_core::closure::Family::Turbulence);
     }
 }

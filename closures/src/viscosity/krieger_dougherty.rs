@@ -6,12 +6,12 @@ use serde::{Deserialize, Serialize};
 
 /// Krieger & Dougherty (1959) viscosity of a dense suspension
 ///
-/// nu_eff / nu_f = (1 - phi/phi_m)^(-[eta] phi_m)
+/// nu_eff / nu_f = (1 - phi/phi_m)^(-\[eta\] phi_m)
 ///
 /// * Source: Fry et al. 2024 eq 30 (and their figure 12 / table II / figure 14);
 ///   Krieger & Dougherty 1959, Trans. Soc. Rheol. 3, 137-152. Eq 30 prints the exponent
 ///   -3/2 phi_m: a typo (VERIFICATION.md); the paper's figures and fits, and Krieger &
-///   Dougherty, use the intrinsic viscosity [eta] = 5/2 of spheres.
+///   Dougherty, use the intrinsic viscosity \[eta\] = 5/2 of spheres.
 /// * Defaults: `phi_m = 0.62` (Fry et al. eq 30; their fits give 0.62 +- 0.02),
 ///   `intrinsic = 2.5`.
 /// * Valid range: `phi_m` in (0, 1), `intrinsic` in (0, 10]. Diverges at phi = phi_m:
@@ -23,7 +23,7 @@ use serde::{Deserialize, Serialize};
 pub struct KriegerDougherty {
     /// maximum volume fraction phi_m at which the viscosity diverges
     pub phi_m: f64,
-    /// intrinsic viscosity [eta] (5/2 for rigid spheres)
+    /// intrinsic viscosity \[eta\] (5/2 for rigid spheres)
     pub intrinsic: f64,
 }
 

@@ -33,14 +33,8 @@ pub enum Family {
 
 impl Family {
     /// Every family, in scene order.
-    pub const ALL: [Family; 6] = [
-        Family::Drag,
-        Family::Hindrance,
-        Family::Viscosity,
-        Family::Granular,
-        Family::Turbulence,
-        Family::Fluctuation,
-    ];
+    pub const ALL: [Family; 6] =
+        [Family::Drag, Family::Hindrance, Family::Viscosity, Family::Granular, Family::Turbulence, Family::Fluctuation];
 
     /// Key of the family's table under `[closures]`.
     pub fn key(self) -> &'static str {

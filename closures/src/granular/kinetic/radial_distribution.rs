@@ -78,10 +78,10 @@ impl Default for ChialvoSundaresanFrictionG0 {
 ///
 /// The two Chialvo-Sundaresan forms return `+inf` for phi >= phi_max.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[serde(tag = "type", rename_all = "snake_case")]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum RadialDistribution {
-    /// Carnahan & Starling (1969)
-    CarnahanStarling,
+    /// Carnahan & Starling (1969) (an empty struct variant so that unknown keys are refused)
+    CarnahanStarling {},
     /// Chialvo & Sundaresan (2013), constant a
     ChialvoSundaresan(ChialvoSundaresanG0),
     /// Chassagne et al. (2023) eqs 3.2-3.3, a depending on interparticle friction
@@ -99,7 +99,7 @@ impl RadialDistribution {
     /// Carnahan-Starling).
     pub fn coefficient_a(&self, mu_p: f64) -> f64 {
         match self {
-            Self::CarnahanStarling => 0.0,
+            Self::CarnahanStarling {} => 0.0,
             Self::ChialvoSundaresan(c) => c.a,
             Self::ChialvoSundaresanFriction(c) => friction_coefficient_a(mu_p, c.a0, c.a_max, c.delta),
         }
@@ -109,7 +109,7 @@ impl RadialDistribution {
     #[inline]
     pub fn g0(&self, phi: f64, phi_max: f64, mu_p: f64) -> f64 {
         match self {
-            Self::CarnahanStarling => carnahan_starling(phi),
+            Self::CarnahanStarling {} => carnahan_starling(phi),
             _ => chialvo_sundaresan(phi, phi_max, self.coefficient_a(mu_p)),
         }
     }
@@ -117,7 +117,7 @@ impl RadialDistribution {
     /// Real parameters, keys relative to the g0 table (prefix them with `g0`).
     pub fn params(&self) -> Vec<Param> {
         match self {
-            Self::CarnahanStarling => Vec::new(),
+            Self::CarnahanStarling {} => Vec::new(),
             Self::ChialvoSundaresan(c) => vec![Param::new(
                 "a",
                 c.a,
@@ -144,7 +144,7 @@ mod tests {
     fn g0_of_zero_is_one() {
         assert_eq!(carnahan_starling(0.0), 1.0);
         for g in [
-            RadialDistribution::CarnahanStarling,
+            RadialDistribution::CarnahanStarling {},
             RadialDistribution::ChialvoSundaresan(ChialvoSundaresanG0::default()),
             RadialDistribution::default(),
         ] {

@@ -23,7 +23,7 @@ use serde::{Deserialize, Serialize};
 /// for EVERY e and e_t (e and e_t enter through mu0 only from the mu_p^4 term on).
 /// Large mu_p: f -> 2 r (1 - r). `mu_p < 0` is treated as 0.
 pub fn jenkins_zhang_f(mu_p: f64, e: f64, e_t: f64) -> f64 {
-    if !(mu_p > 0.0) {
+    if mu_p.is_nan() || mu_p <= 0.0 {
         return 0.0;
     }
     let pi = std::f64::consts::PI;
@@ -52,13 +52,13 @@ pub struct JenkinsZhang {
 /// * `{ type = "plain" }`: e_eff = e (initial model).
 /// * `{ type = "jenkins_zhang", e_t = 0 }`: e_eff = max(e - f(mu_p), 0), eq C1 (proposed
 ///   model). The clamp at 0 is a saltus decision: for small e and large mu_p eq C1 goes
-///   negative (e = 0.3, mu_p >= 0.6; e = 0.1, mu_p >= 0.1), where 1 - e_eff^2 would start
+///   negative (e = 0.3, mu_p > ~0.58; e = 0.1, mu_p > ~0.08), where 1 - e_eff^2 would start
 ///   to *decrease* with friction; clamping keeps dissipation monotone in mu_p.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum RestitutionModel {
-    /// e_eff = e
-    Plain,
+    /// e_eff = e (an empty struct variant so that unknown keys are refused)
+    Plain {},
     /// e_eff = e - f(mu_p) (Jenkins & Zhang 2002)
     JenkinsZhang(JenkinsZhang),
 }
@@ -74,7 +74,7 @@ impl RestitutionModel {
     #[inline]
     pub fn effective(&self, e: f64, mu_p: f64) -> f64 {
         match self {
-            Self::Plain => e,
+            Self::Plain {} => e,
             Self::JenkinsZhang(j) => (e - jenkins_zhang_f(mu_p, e, j.e_t)).max(0.0),
         }
     }
@@ -82,7 +82,7 @@ impl RestitutionModel {
     /// Real parameters, keys relative to the `restitution_model` table.
     pub fn params(&self) -> Vec<Param> {
         match self {
-            Self::Plain => Vec::new(),
+            Self::Plain {} => Vec::new(),
             Self::JenkinsZhang(j) => vec![Param::new(
                 "e_t",
                 j.e_t,
@@ -108,7 +108,7 @@ mod tests {
     fn frictionless_gives_bare_restitution() {
         for e in [0.1, 0.5, 0.7, 1.0] {
             assert_eq!(jz().effective(e, 0.0), e);
-            assert_eq!(RestitutionModel::Plain.effective(e, 0.4), e);
+            assert_eq!(RestitutionModel::Plain {}.effective(e, 0.4), e);
         }
     }
 

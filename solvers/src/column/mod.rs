@@ -1,0 +1,1 @@
+//! Shared 1D column fluid solver.
