@@ -24,7 +24,10 @@ where
     closure_from_value(toml::Value::Table(t), family, Path::new("bench"), "bench").expect("bench model")
 }
 
-fn column() -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) {
+/// z, dz, phi, re_p, du/dz of a bed-like column.
+type Column = (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
+
+fn column() -> Column {
     let dz = 30.5 * 6e-3 / N as f64;
     let z: Vec<f64> = (0..N).map(|i| (i as f64 + 0.5) * dz).collect();
     // a bed-like tanh profile from 0.6 to 0

@@ -226,7 +226,7 @@ pub fn evaluate(
             let dz = cell_widths(z, origin)?;
             let d = need(input, "d", family, origin)?;
             let diameter = d.first().copied().unwrap_or(0.0);
-            if d.iter().any(|&x| x != diameter) || !(diameter > 0.0) {
+            if d.iter().any(|&x| x != diameter) || diameter.is_nan() || diameter <= 0.0 {
                 bail!("{origin}: column `d` must hold one positive grain diameter (m) on every row");
             }
             let col = ColumnView { z, dz: &dz, phi, dudz, diameter, nu_f: 0.0, transported: &[] };

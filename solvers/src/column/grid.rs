@@ -77,12 +77,12 @@ impl Grid {
                 reason: "the first face is the bottom wall and must be 0",
             });
         }
-        for (j, w) in faces.windows(2).enumerate() {
+        for w in faces.windows(2) {
             if !(w[1].is_finite() && w[1] > w[0]) {
                 return Err(ColumnError::InvalidParameter {
                     name: "faces",
                     value: w[1],
-                    reason: if j == usize::MAX { "" } else { "faces must be finite and strictly increasing" },
+                    reason: "faces must be finite and strictly increasing",
                 });
             }
         }
