@@ -1,0 +1,565 @@
+//! Streamwise fluid momentum of the column: [`FluidColumn`].
+
+use saltus_core::{ColumnView, EffectiveViscosity, Turbulence};
+
+use super::tridiagonal::Tridiagonal;
+use super::{ColumnError, Grid};
+
+/// Boundary condition at the top of the column (z = H).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TopBoundary {
+    /// free surface: zero shear stress, du/dz = 0
+    FreeSurface,
+    /// moving lid (Couette): u = `velocity` (m/s) at z = H
+    Lid {
+        /// lid velocity (m/s)
+        velocity: f64,
+    },
+    /// symmetry plane (channel centreline): zero shear stress; for this equation the same
+    /// discrete condition as [`TopBoundary::FreeSurface`], kept distinct for clarity
+    Symmetry,
+}
+
+/// Physical and numerical parameters of a [`FluidColumn`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ColumnParams {
+    /// fluid density rho_f (kg/m^3)
+    pub density: f64,
+    /// clear-fluid kinematic viscosity nu_f (m^2/s)
+    pub viscosity: f64,
+    /// particle diameter d (m), handed to the turbulence closure (0 for clear water)
+    pub diameter: f64,
+    /// streamwise gravity g sin(alpha) (m/s^2)
+    pub gravity_x: f64,
+    /// imposed streamwise pressure gradient G_x = -dp/dx (Pa/m)
+    pub pressure_gradient: f64,
+    /// top boundary condition
+    pub top: TopBoundary,
+    /// under-relaxation omega in (0, 1] of nu_t in [`FluidColumn::solve_steady`]:
+    /// nu_t <- omega nu_t(u) + (1 - omega) nu_t. The default 0.5 turns the Picard map of a
+    /// fully turbulent mixing-length layer (nu_t <- C / nu_t, which oscillates with
+    /// omega = 1) into a Newton (Babylonian) iteration.
+    pub relaxation: f64,
+}
+
+impl Default for ColumnParams {
+    /// Water (rho_f = 1000, nu_f = 1e-6), no particle, no driving, free surface, omega = 0.5.
+    fn default() -> Self {
+        Self {
+            density: 1000.0,
+            viscosity: 1.0e-6,
+            diameter: 0.0,
+            gravity_x: 0.0,
+            pressure_gradient: 0.0,
+            top: TopBoundary::FreeSurface,
+            relaxation: 0.5,
+        }
+    }
+}
+
+/// The closures the column uses.
+#[derive(Clone, Copy, Debug)]
+pub struct Closures<'a> {
+    /// effective viscosity nu_eff = nu_f ratio(phi)
+    pub viscosity: &'a dyn EffectiveViscosity,
+    /// eddy viscosity nu_t (algebraic closures only for now)
+    pub turbulence: &'a dyn Turbulence,
+}
+
+/// Per-cell coupling with the particle phase, supplied by the caller every step (all
+/// zero for clear water).
+#[derive(Clone, Copy, Debug)]
+pub struct Coupling<'a> {
+    /// solid volume fraction phi per cell, in [0, 1)
+    pub phi: &'a [f64],
+    /// implicit drag coefficient beta per cell (kg m^-3 s^-1), >= 0: the drag on the fluid
+    /// per unit mixture volume is -beta (u_f - u_p)
+    pub beta: &'a [f64],
+    /// particle velocity u_p per cell (m/s)
+    pub u_p: &'a [f64],
+}
+
+/// Outcome of [`FluidColumn::solve_steady`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SteadyReport {
+    /// linear solves performed
+    pub iterations: usize,
+    /// final relative residual of the steady equation (see [`FluidColumn::residual`])
+    pub residual: f64,
+}
+
+/// Second-order one-sided gradient at a wall from the wall value and the two nearest
+/// cell centres at distances `a < b`: du/ds(0) = c_w u_w + c_a u(a) + c_b u(b), exact for
+/// quadratics. c_a > 0 and c_b, c_w < 0, which keeps the operator an M-matrix.
+#[derive(Clone, Copy, Debug, Default)]
+struct WallStencil {
+    cw: f64,
+    ca: f64,
+    cb: f64,
+}
+
+impl WallStencil {
+    fn new(a: f64, b: f64) -> Self {
+        Self { cw: -(a + b) / (a * b), ca: b / (a * (b - a)), cb: -a / (b * (b - a)) }
+    }
+}
+
+/// 1D column solver of the streamwise fluid momentum; see the module documentation of
+/// [`crate::column`] for the equation, the discretisation and the boundary conditions.
+///
+/// All work arrays are allocated by [`FluidColumn::new`]; [`FluidColumn::step`] and
+/// [`FluidColumn::solve_steady`] do not allocate.
+#[derive(Clone, Debug)]
+pub struct FluidColumn {
+    grid: Grid,
+    params: ColumnParams,
+    time: f64,
+    residual: f64,
+    bottom: WallStencil,
+    top: WallStencil,
+    /// fluid velocity per cell
+    u: Vec<f64>,
+    /// fluid velocity per face
+    u_face: Vec<f64>,
+    /// du/dz per cell (given to the turbulence closure)
+    dudz: Vec<f64>,
+    /// eddy viscosity per cell (the one of the last solve, or of the converged state)
+    nu_t: Vec<f64>,
+    /// eddy viscosity work array
+    nu_t_work: Vec<f64>,
+    /// nu_eff / nu_f per cell
+    ratio: Vec<f64>,
+    /// eps (nu_eff + nu_t) per cell (m^2/s)
+    k: Vec<f64>,
+    /// rho_f times the harmonic face diffusivity over the centre distance (kg m^-2 s^-1),
+    /// interior faces 1..n (entries 0 and n unused)
+    cond: Vec<f64>,
+    /// total shear stress per face (Pa)
+    stress: Vec<f64>,
+    /// inputs of the last step
+    phi: Vec<f64>,
+    beta: Vec<f64>,
+    u_p: Vec<f64>,
+    /// driving per unit volume eps (rho_f g sin(alpha) + G_x) per cell (Pa/m)
+    source: Vec<f64>,
+    tri: Tridiagonal,
+}
+
+impl FluidColumn {
+    /// A column at rest (u = 0, t = 0, clear water) on `grid`.
+    pub fn new(grid: Grid, params: ColumnParams) -> Result<Self, ColumnError> {
+        let p = &params;
+        let positive = |name, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(ColumnError::InvalidParameter { name, value: v, reason: "must be finite and > 0" })
+            }
+        };
+        positive("fluid density", p.density)?;
+        positive("fluid viscosity", p.viscosity)?;
+        if !(p.diameter.is_finite() && p.diameter >= 0.0) {
+            return Err(ColumnError::InvalidParameter {
+                name: "diameter",
+                value: p.diameter,
+                reason: "must be finite and >= 0",
+            });
+        }
+        for (name, v) in [("gravity_x", p.gravity_x), ("pressure_gradient", p.pressure_gradient)] {
+            if !v.is_finite() {
+                return Err(ColumnError::InvalidParameter { name, value: v, reason: "must be finite" });
+            }
+        }
+        if let TopBoundary::Lid { velocity } = p.top {
+            if !velocity.is_finite() {
+                return Err(ColumnError::InvalidParameter {
+                    name: "lid velocity",
+                    value: velocity,
+                    reason: "must be finite",
+                });
+            }
+        }
+        if !(p.relaxation > 0.0 && p.relaxation <= 1.0) {
+            return Err(ColumnError::InvalidParameter {
+                name: "relaxation",
+                value: p.relaxation,
+                reason: "must be in (0, 1]",
+            });
+        }
+        let n = grid.len();
+        let zc = grid.centres();
+        let h = grid.height();
+        let bottom = WallStencil::new(zc[0], zc[1]);
+        let top = WallStencil::new(h - zc[n - 1], h - zc[n - 2]);
+        let mut col = Self {
+            params,
+            time: 0.0,
+            residual: 0.0,
+            bottom,
+            top,
+            u: vec![0.0; n],
+            u_face: vec![0.0; n + 1],
+            dudz: vec![0.0; n],
+            nu_t: vec![0.0; n],
+            nu_t_work: vec![0.0; n],
+            ratio: vec![1.0; n],
+            k: vec![0.0; n],
+            cond: vec![0.0; n + 1],
+            stress: vec![0.0; n + 1],
+            phi: vec![0.0; n],
+            beta: vec![0.0; n],
+            u_p: vec![0.0; n],
+            source: vec![0.0; n],
+            tri: Tridiagonal::new(n),
+            grid,
+        };
+        let s = col.params.density * col.params.gravity_x + col.params.pressure_gradient;
+        col.source.fill(s);
+        col.update_coefficients();
+        col.update_derived();
+        Ok(col)
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &ColumnParams {
+        &self.params
+    }
+
+    /// Simulated time (s), advanced by [`FluidColumn::step`] with a finite dt.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Set the simulated time (s), e.g. on restart.
+    pub fn set_time(&mut self, t: f64) {
+        self.time = t;
+    }
+
+    /// Fluid velocity u_f per cell (m/s).
+    pub fn velocity(&self) -> &[f64] {
+        &self.u
+    }
+
+    /// Set the fluid velocity per cell (initial condition); face values, shear rate and
+    /// stresses are updated with the current coefficients.
+    pub fn set_velocity(&mut self, u: &[f64]) -> Result<(), ColumnError> {
+        let n = self.u.len();
+        if u.len() != n {
+            return Err(ColumnError::Length { field: "u_f", expected: n, found: u.len() });
+        }
+        if let Some(i) = u.iter().position(|v| !v.is_finite()) {
+            return Err(self.invalid("u_f", i, u[i], "must be finite"));
+        }
+        self.u.copy_from_slice(u);
+        self.update_derived();
+        Ok(())
+    }
+
+    /// Fluid velocity at the faces z_f[0..=n] (m/s): 0 at the wall, distance-weighted
+    /// linear interpolation inside, the lid velocity or the zero-slope quadratic
+    /// extrapolation of the last two cells at the top.
+    pub fn face_velocity(&self) -> &[f64] {
+        &self.u_face
+    }
+
+    /// Shear rate du_f/dz per cell (1/s), the difference of the face velocities over the
+    /// cell width (the value handed to the turbulence closure).
+    pub fn shear_rate(&self) -> &[f64] {
+        &self.dudz
+    }
+
+    /// Eddy viscosity nu_t per cell (m^2/s): the one of the last linear solve (lagged)
+    /// after [`FluidColumn::step`], the one of the converged velocity after
+    /// [`FluidColumn::solve_steady`].
+    pub fn eddy_viscosity(&self) -> &[f64] {
+        &self.nu_t
+    }
+
+    /// eps (nu_eff + nu_t) per cell (m^2/s), the kinematic diffusivity of the momentum
+    /// equation.
+    pub fn diffusivity(&self) -> &[f64] {
+        &self.k
+    }
+
+    /// Total (viscous + turbulent) fluid shear stress rho_f eps (nu_eff + nu_t) du/dz per
+    /// face z_f[0..=n] (Pa), as the discrete fluxes of the momentum equation.
+    pub fn shear_stress(&self) -> &[f64] {
+        &self.stress
+    }
+
+    /// Wall shear stress rho_f eps (nu_eff + nu_t) du/dz at z = 0 (Pa).
+    pub fn wall_shear_stress(&self) -> f64 {
+        self.stress[0]
+    }
+
+    /// Reynolds shear stress per cell R_xz = rho_f eps nu_t du/dz (Pa) into `out`
+    /// (length n; extra entries untouched).
+    pub fn reynolds_stress(&self, out: &mut [f64]) {
+        let rho = self.params.density;
+        for (((o, &nu), &g), &phi) in out.iter_mut().zip(&self.nu_t).zip(&self.dudz).zip(&self.phi) {
+            *o = rho * (1.0 - phi) * nu * g;
+        }
+    }
+
+    /// Depth-averaged fluid velocity over the whole column, sum(u dz) / H (m/s).
+    pub fn depth_averaged_velocity(&self) -> f64 {
+        let q: f64 = self.u.iter().zip(self.grid.dz()).map(|(u, dz)| u * dz).sum();
+        q / self.grid.height()
+    }
+
+    /// Driving per unit volume eps (rho_f g sin(alpha) + G_x) per cell (Pa/m), for the
+    /// inputs of the last step.
+    pub fn driving(&self) -> &[f64] {
+        &self.source
+    }
+
+    /// Relative residual of the discrete steady equation for the current velocity and the
+    /// stored nu_t: max_i |tau_{i+1/2} - tau_{i-1/2} + (S_i - beta_i (u_i - u_p,i)) dz_i|
+    /// divided by |tau_wall| + |tau_top| + sum_i (|S_i| + |beta_i (u_i - u_p,i)|) dz_i
+    /// (0 when every term vanishes). After a transient step it measures the remaining
+    /// unsteadiness.
+    pub fn residual(&self) -> f64 {
+        self.residual
+    }
+
+    /// Advance by `dt` (s) with backward Euler: diffusion and drag implicit, nu_t lagged
+    /// (evaluated once from the velocity at the start of the step). `dt = f64::INFINITY`
+    /// solves the steady equation with the lagged nu_t (one Picard iteration); time is
+    /// advanced only for finite `dt`.
+    pub fn step(&mut self, dt: f64, coupling: &Coupling<'_>, closures: &Closures<'_>) -> Result<(), ColumnError> {
+        if !(dt > 0.0) {
+            return Err(ColumnError::InvalidParameter { name: "dt", value: dt, reason: "must be > 0" });
+        }
+        self.load_inputs(coupling, closures)?;
+        self.evaluate_turbulence(closures.turbulence)?;
+        std::mem::swap(&mut self.nu_t, &mut self.nu_t_work);
+        self.update_coefficients();
+        let t_new = if dt.is_finite() { self.time + dt } else { self.time };
+        self.solve_linear(dt, t_new)?;
+        self.time = t_new;
+        self.update_derived();
+        Ok(())
+    }
+
+    /// Solve the steady equation by Picard iteration on nu_t with under-relaxation
+    /// [`ColumnParams::relaxation`] and infinite pseudo time step (the implicit operator
+    /// with the no-slip wall is non-singular). Each iteration evaluates nu_t from the
+    /// current velocity, checks the residual of the steady equation with that nu_t
+    /// against `tol` (see [`FluidColumn::residual`]), and otherwise relaxes nu_t and
+    /// solves the linear system. Starts from the current velocity; a laminar problem
+    /// converges after one solve. Time is not advanced.
+    ///
+    /// On non-convergence after `max_iter` solves, returns
+    /// [`ColumnError::NotConverged`]; the column keeps its last iterate.
+    pub fn solve_steady(
+        &mut self,
+        coupling: &Coupling<'_>,
+        closures: &Closures<'_>,
+        tol: f64,
+        max_iter: usize,
+    ) -> Result<SteadyReport, ColumnError> {
+        self.load_inputs(coupling, closures)?;
+        let omega = self.params.relaxation;
+        let mut it = 0;
+        loop {
+            self.evaluate_turbulence(closures.turbulence)?;
+            // nu_t <- nu_t(u), keeping the previous one in the work array
+            std::mem::swap(&mut self.nu_t, &mut self.nu_t_work);
+            self.update_coefficients();
+            self.update_derived();
+            if self.residual <= tol {
+                return Ok(SteadyReport { iterations: it, residual: self.residual });
+            }
+            if it == max_iter {
+                return Err(ColumnError::NotConverged { iterations: it, residual: self.residual, tol });
+            }
+            for (new, &old) in self.nu_t.iter_mut().zip(&self.nu_t_work) {
+                *new = omega * *new + (1.0 - omega) * old;
+            }
+            self.update_coefficients();
+            self.solve_linear(f64::INFINITY, self.time)?;
+            it += 1;
+        }
+    }
+
+    fn invalid(&self, field: &'static str, cell: usize, value: f64, reason: &'static str) -> ColumnError {
+        ColumnError::InvalidInput { field, cell, z: self.grid.centres()[cell], value, reason }
+    }
+
+    fn non_finite(&self, field: &'static str, cell: usize, time: f64) -> ColumnError {
+        ColumnError::NonFinite { field, cell, z: self.grid.centres()[cell], time }
+    }
+
+    /// Check and copy the coupling inputs; effective viscosity ratio and driving.
+    fn load_inputs(&mut self, c: &Coupling<'_>, closures: &Closures<'_>) -> Result<(), ColumnError> {
+        let n = self.u.len();
+        if !closures.turbulence.transported().is_empty() {
+            return Err(ColumnError::Unsupported { model: closures.turbulence.name() });
+        }
+        for (field, s) in [("phi", c.phi), ("beta", c.beta), ("u_p", c.u_p)] {
+            if s.len() != n {
+                return Err(ColumnError::Length { field, expected: n, found: s.len() });
+            }
+        }
+        for i in 0..n {
+            let (phi, beta, up) = (c.phi[i], c.beta[i], c.u_p[i]);
+            if !(phi.is_finite() && (0.0..1.0).contains(&phi)) {
+                return Err(self.invalid("phi", i, phi, "volume fraction must be in [0, 1)"));
+            }
+            if !(beta.is_finite() && beta >= 0.0) {
+                return Err(self.invalid("beta", i, beta, "drag coefficient must be finite and >= 0"));
+            }
+            if !up.is_finite() {
+                return Err(self.invalid("u_p", i, up, "particle velocity must be finite"));
+            }
+        }
+        self.phi.copy_from_slice(c.phi);
+        self.beta.copy_from_slice(c.beta);
+        self.u_p.copy_from_slice(c.u_p);
+        closures.viscosity.ratio_batch(&self.phi, &mut self.ratio);
+        if let Some(i) = self.ratio.iter().position(|r| !(r.is_finite() && *r > 0.0)) {
+            return Err(self.invalid(
+                "phi",
+                i,
+                self.phi[i],
+                "the effective viscosity is not finite and positive at this volume fraction",
+            ));
+        }
+        let drive = self.params.density * self.params.gravity_x + self.params.pressure_gradient;
+        for (s, &phi) in self.source.iter_mut().zip(&self.phi) {
+            *s = (1.0 - phi) * drive;
+        }
+        Ok(())
+    }
+
+    /// nu_t from the current shear rate into `nu_t_work`.
+    fn evaluate_turbulence(&mut self, turbulence: &dyn Turbulence) -> Result<(), ColumnError> {
+        let col = ColumnView {
+            z: self.grid.centres(),
+            dz: self.grid.dz(),
+            phi: &self.phi,
+            dudz: &self.dudz,
+            diameter: self.params.diameter,
+            nu_f: self.params.viscosity,
+            transported: &[],
+        };
+        turbulence.eddy_viscosity(&col, &mut self.nu_t_work);
+        if let Some(i) = self.nu_t_work.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
+            return Err(self.non_finite("nu_t", i, self.time));
+        }
+        Ok(())
+    }
+
+    /// Cell diffusivities and face conductances from `ratio`, `phi` and `nu_t`.
+    fn update_coefficients(&mut self) {
+        let nu_f = self.params.viscosity;
+        for (((k, &r), &phi), &nt) in self.k.iter_mut().zip(&self.ratio).zip(&self.phi).zip(&self.nu_t) {
+            *k = (1.0 - phi) * (nu_f * r + nt);
+        }
+        let zf = self.grid.faces();
+        let zc = self.grid.centres();
+        let rho = self.params.density;
+        for j in 1..self.u.len() {
+            // series resistance of the two half cells: distance-weighted harmonic mean
+            let resistance = (zf[j] - zc[j - 1]) / self.k[j - 1] + (zc[j] - zf[j]) / self.k[j];
+            self.cond[j] = rho / resistance;
+        }
+    }
+
+    /// Assemble and solve the backward-Euler system for `dt` (infinite: steady).
+    fn solve_linear(&mut self, dt: f64, time: f64) -> Result<(), ColumnError> {
+        let n = self.u.len();
+        let rho = self.params.density;
+        let inv_dt = if dt.is_finite() { 1.0 / dt } else { 0.0 };
+        let dz = self.grid.dz();
+        let t = &mut self.tri;
+        for i in 0..n {
+            let tm = (1.0 - self.phi[i]) * rho * dz[i] * inv_dt;
+            let b = self.beta[i] * dz[i];
+            t.lower[i] = 0.0;
+            t.upper[i] = 0.0;
+            t.diag[i] = tm + b;
+            t.rhs[i] = tm * self.u[i] + self.source[i] * dz[i] + b * self.u_p[i];
+        }
+        for j in 1..n {
+            let c = self.cond[j];
+            t.diag[j - 1] += c;
+            t.upper[j - 1] -= c;
+            t.diag[j] += c;
+            t.lower[j] -= c;
+        }
+        // bottom no-slip wall (u_w = 0): flux rho k_0 (c_a u_0 + c_b u_1)
+        let w = rho * self.k[0];
+        t.diag[0] += w * self.bottom.ca;
+        t.upper[0] += w * self.bottom.cb;
+        if let TopBoundary::Lid { velocity } = self.params.top {
+            // flux at the top -rho k_{n-1} (c_w U + c_a u_{n-1} + c_b u_{n-2})
+            let w = rho * self.k[n - 1];
+            t.diag[n - 1] += w * self.top.ca;
+            t.lower[n - 1] += w * self.top.cb;
+            t.rhs[n - 1] -= w * self.top.cw * velocity;
+        }
+        if let Err(row) = t.solve(&mut self.u) {
+            return Err(ColumnError::Singular { row, time });
+        }
+        if let Some(i) = self.u.iter().position(|v| !v.is_finite()) {
+            return Err(self.non_finite("u_f", i, time));
+        }
+        Ok(())
+    }
+
+    /// Face velocities, shear rate, stresses and residual from `u` and the coefficients.
+    fn update_derived(&mut self) {
+        let n = self.u.len();
+        let zf = self.grid.faces();
+        let zc = self.grid.centres();
+        let dz = self.grid.dz();
+        let u = &self.u;
+        let rho = self.params.density;
+        // face velocities
+        self.u_face[0] = 0.0;
+        for j in 1..n {
+            let (dl, dr) = (zf[j] - zc[j - 1], zc[j] - zf[j]);
+            self.u_face[j] = (dr * u[j - 1] + dl * u[j]) / (dl + dr);
+        }
+        let (a, b) = (zf[n] - zc[n - 1], zf[n] - zc[n - 2]);
+        self.u_face[n] = match self.params.top {
+            TopBoundary::Lid { velocity } => velocity,
+            TopBoundary::FreeSurface | TopBoundary::Symmetry => {
+                // u = u_top + c (H - z)^2 through the last two centres
+                let c = (u[n - 2] - u[n - 1]) / (b * b - a * a);
+                u[n - 1] - c * a * a
+            }
+        };
+        for (i, g) in self.dudz.iter_mut().enumerate() {
+            *g = (self.u_face[i + 1] - self.u_face[i]) / dz[i];
+        }
+        // stresses (discrete fluxes)
+        self.stress[0] = rho * self.k[0] * (self.bottom.ca * u[0] + self.bottom.cb * u[1]);
+        for j in 1..n {
+            self.stress[j] = self.cond[j] * (u[j] - u[j - 1]);
+        }
+        self.stress[n] = match self.params.top {
+            TopBoundary::Lid { velocity } => {
+                -rho * self.k[n - 1] * (self.top.cw * velocity + self.top.ca * u[n - 1] + self.top.cb * u[n - 2])
+            }
+            TopBoundary::FreeSurface | TopBoundary::Symmetry => 0.0,
+        };
+        // residual of the steady equation
+        let mut worst: f64 = 0.0;
+        let mut scale = self.stress[0].abs() + self.stress[n].abs();
+        for i in 0..n {
+            let drag = self.beta[i] * (u[i] - self.u_p[i]) * dz[i];
+            let s = self.source[i] * dz[i];
+            let r = self.stress[i + 1] - self.stress[i] + s - drag;
+            worst = worst.max(r.abs());
+            scale += s.abs() + drag.abs();
+        }
+        self.residual = if worst == 0.0 { 0.0 } else { worst / scale };
+    }
+}
