@@ -75,14 +75,7 @@ impl LocalRheology for MuI {
     }
     #[inline]
     fn control_number(&self, s: &LocalState) -> f64 {
-        let gamma = s.shear_rate.abs();
-        if gamma == 0.0 {
-            0.0
-        } else if s.pressure <= 0.0 {
-            f64::INFINITY
-        } else {
-            s.diameter * gamma * (s.particle_density / s.pressure).sqrt()
-        }
+        s.inertial_number()
     }
     #[inline]
     fn friction(&self, x: f64) -> f64 {

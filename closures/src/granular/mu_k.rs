@@ -94,15 +94,13 @@ impl LocalRheology for MuK {
     }
     #[inline]
     fn control_number(&self, s: &LocalState) -> f64 {
-        let gamma = s.shear_rate.abs();
-        if gamma == 0.0 {
-            0.0
-        } else if s.pressure <= 0.0 {
-            f64::INFINITY
-        } else {
-            let d = s.diameter;
-            (gamma * s.fluid_viscosity + self.alpha * s.particle_density * d * d * gamma * gamma) / s.pressure
+        // K = J + alpha I^2, eq 36
+        let (i, j) = (s.inertial_number(), s.viscous_number());
+        if j.is_infinite() {
+            // sheared at zero pressure; alpha = 0 must not turn 0 * inf into NaN
+            return f64::INFINITY;
         }
+        j + self.alpha * i * i
     }
     #[inline]
     fn friction(&self, x: f64) -> f64 {

@@ -19,6 +19,33 @@ pub struct LocalState {
     pub fluid_viscosity: f64,
 }
 
+impl LocalState {
+    /// Inertial number I = d |gamma_dot| / sqrt(p / rho_p) (Chassagne 2023 section 1,
+    /// Fry 2024 eq 34). Zero without shear; +inf when sheared at zero pressure.
+    pub fn inertial_number(&self) -> f64 {
+        let gamma = self.shear_rate.abs();
+        if gamma == 0.0 {
+            0.0
+        } else if self.pressure <= 0.0 {
+            f64::INFINITY
+        } else {
+            self.diameter * gamma * (self.particle_density / self.pressure).sqrt()
+        }
+    }
+
+    /// Viscous number J = eta_f |gamma_dot| / p (Fry 2024 eq 35), with the same limits.
+    pub fn viscous_number(&self) -> f64 {
+        let gamma = self.shear_rate.abs();
+        if gamma == 0.0 {
+            0.0
+        } else if self.pressure <= 0.0 {
+            f64::INFINITY
+        } else {
+            self.fluid_viscosity * gamma / self.pressure
+        }
+    }
+}
+
 /// A local rheology: friction coefficient mu = tau_p / p_p and volume fraction as functions
 /// of one dimensionless control number (I or K).
 pub trait LocalRheology: Send + Sync {
