@@ -109,7 +109,7 @@ impl Grid {
         self.faces[self.faces.len() - 1]
     }
 
-    /// Faces z_f[0..=n] (m); z_f[0] = 0, z_f[n] = H.
+    /// Faces z_f[0..=n] (m); `z_f[0] = 0`, `z_f[n] = H`.
     #[inline]
     pub fn faces(&self) -> &[f64] {
         &self.faces

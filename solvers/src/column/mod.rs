@@ -46,9 +46,12 @@
 //!   quadratic one the scheme is exact at the cell centres for the quadratic laminar
 //!   solution (VERIFICATION.md benchmark 1) as well as for the linear Couette one. The
 //!   stencil stays in the tridiagonal band and keeps the M-matrix sign pattern.
-//! * Face velocities: linear interpolation; top free surface: zero-slope quadratic
-//!   through the last two centres. The shear rate handed to the turbulence closure is the
-//!   difference of the face velocities over each cell.
+//! * Face velocities: flux-continuity interpolation (w_L u_L + w_R u_R)/(w_L + w_R),
+//!   w = k / distance, consistent with the harmonic face diffusivity (linear
+//!   interpolation for uniform k); top free surface: zero-slope quadratic through the
+//!   last two centres. The shear rate handed to the turbulence closure is the
+//!   difference over each cell of the linearly interpolated face values (central
+//!   difference on a uniform grid), independent of the diffusivity.
 //!
 //! # Boundary conditions
 //!

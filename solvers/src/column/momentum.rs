@@ -260,15 +260,18 @@ impl FluidColumn {
         Ok(())
     }
 
-    /// Fluid velocity at the faces z_f[0..=n] (m/s): 0 at the wall, distance-weighted
-    /// linear interpolation inside, the lid velocity or the zero-slope quadratic
-    /// extrapolation of the last two cells at the top.
+    /// Fluid velocity at the faces z_f[0..=n] (m/s): 0 at the wall; inside, the value
+    /// that makes the two half-cell fluxes equal, (w_L u_L + w_R u_R) / (w_L + w_R) with
+    /// w = k / (distance to the face) (linear interpolation for uniform k, exact for a
+    /// piecewise-linear profile across a jump of k at the face); at the top the lid
+    /// velocity or the zero-slope quadratic extrapolation of the last two cells.
     pub fn face_velocity(&self) -> &[f64] {
         &self.u_face
     }
 
-    /// Shear rate du_f/dz per cell (1/s), the difference of the face velocities over the
-    /// cell width (the value handed to the turbulence closure).
+    /// Shear rate du_f/dz per cell (1/s) handed to the turbulence closure: the difference
+    /// over the cell of the linearly interpolated face values (wall 0, top as in
+    /// [`FluidColumn::face_velocity`]), i.e. the central difference on a uniform grid.
     pub fn shear_rate(&self) -> &[f64] {
         &self.dudz
     }
@@ -332,7 +335,7 @@ impl FluidColumn {
     /// solves the steady equation with the lagged nu_t (one Picard iteration); time is
     /// advanced only for finite `dt`.
     pub fn step(&mut self, dt: f64, coupling: &Coupling<'_>, closures: &Closures<'_>) -> Result<(), ColumnError> {
-        if !(dt > 0.0) {
+        if dt.is_nan() || dt <= 0.0 {
             return Err(ColumnError::InvalidParameter { name: "dt", value: dt, reason: "must be > 0" });
         }
         self.load_inputs(coupling, closures)?;
@@ -371,7 +374,7 @@ impl FluidColumn {
             // nu_t <- nu_t(u), keeping the previous one in the work array
             std::mem::swap(&mut self.nu_t, &mut self.nu_t_work);
             self.update_coefficients();
-            self.update_derived();
+            self.update_stresses();
             if self.residual <= tol {
                 return Ok(SteadyReport { iterations: it, residual: self.residual });
             }
@@ -383,6 +386,7 @@ impl FluidColumn {
             }
             self.update_coefficients();
             self.solve_linear(f64::INFINITY, self.time)?;
+            self.update_faces();
             it += 1;
         }
     }
@@ -478,13 +482,13 @@ impl FluidColumn {
         let inv_dt = if dt.is_finite() { 1.0 / dt } else { 0.0 };
         let dz = self.grid.dz();
         let t = &mut self.tri;
-        for i in 0..n {
-            let tm = (1.0 - self.phi[i]) * rho * dz[i] * inv_dt;
-            let b = self.beta[i] * dz[i];
+        for (i, &dzi) in dz.iter().enumerate() {
+            let tm = (1.0 - self.phi[i]) * rho * dzi * inv_dt;
+            let b = self.beta[i] * dzi;
             t.lower[i] = 0.0;
             t.upper[i] = 0.0;
             t.diag[i] = tm + b;
-            t.rhs[i] = tm * self.u[i] + self.source[i] * dz[i] + b * self.u_p[i];
+            t.rhs[i] = tm * self.u[i] + self.source[i] * dzi + b * self.u_p[i];
         }
         for j in 1..n {
             let c = self.cond[j];
@@ -515,17 +519,23 @@ impl FluidColumn {
 
     /// Face velocities, shear rate, stresses and residual from `u` and the coefficients.
     fn update_derived(&mut self) {
+        self.update_faces();
+        self.update_stresses();
+    }
+
+    /// Face velocities and shear rate from `u`.
+    fn update_faces(&mut self) {
         let n = self.u.len();
         let zf = self.grid.faces();
         let zc = self.grid.centres();
         let dz = self.grid.dz();
         let u = &self.u;
-        let rho = self.params.density;
-        // face velocities
         self.u_face[0] = 0.0;
         for j in 1..n {
-            let (dl, dr) = (zf[j] - zc[j - 1], zc[j] - zf[j]);
-            self.u_face[j] = (dr * u[j - 1] + dl * u[j]) / (dl + dr);
+            // flux continuity k_L (u_f - u_L) / d_L = k_R (u_R - u_f) / d_R
+            let wl = self.k[j - 1] / (zf[j] - zc[j - 1]);
+            let wr = self.k[j] / (zc[j] - zf[j]);
+            self.u_face[j] = (wl * u[j - 1] + wr * u[j]) / (wl + wr);
         }
         let (a, b) = (zf[n] - zc[n - 1], zf[n] - zc[n - 2]);
         self.u_face[n] = match self.params.top {
@@ -536,10 +546,28 @@ impl FluidColumn {
                 u[n - 1] - c * a * a
             }
         };
-        for (i, g) in self.dudz.iter_mut().enumerate() {
-            *g = (self.u_face[i + 1] - self.u_face[i]) / dz[i];
+        // shear rate: difference over each cell of the linearly interpolated face values
+        // (central difference (u_{i+1} - u_{i-1}) / (2 dz) on a uniform grid); the
+        // diffusivity does not enter, so nu_t feeds back on itself only through the closure
+        let linear = |j: usize| {
+            let (dl, dr) = (zf[j] - zc[j - 1], zc[j] - zf[j]);
+            (dr * u[j - 1] + dl * u[j]) / (dl + dr)
+        };
+        let mut below = 0.0;
+        for (i, (g, &dzi)) in self.dudz.iter_mut().zip(dz).enumerate() {
+            let above = if i + 1 < n { linear(i + 1) } else { self.u_face[n] };
+            *g = (above - below) / dzi;
+            below = above;
         }
-        // stresses (discrete fluxes)
+    }
+
+    /// Stresses (the discrete fluxes) and the steady residual from `u` and the
+    /// coefficients.
+    fn update_stresses(&mut self) {
+        let n = self.u.len();
+        let dz = self.grid.dz();
+        let u = &self.u;
+        let rho = self.params.density;
         self.stress[0] = rho * self.k[0] * (self.bottom.ca * u[0] + self.bottom.cb * u[1]);
         for j in 1..n {
             self.stress[j] = self.cond[j] * (u[j] - u[j - 1]);
