@@ -389,9 +389,21 @@ fn closure_plot_writes_png_and_csv_for_every_figure() {
 }
 
 #[test]
-fn run_without_solver_is_a_clean_error() {
-    let err = assert_clean_failure(
-        &check_scene("noop", "").status.success().then(|| saltus(&["run", "does/not/exist.toml"])).unwrap(),
-    );
+fn run_refuses_cleanly_until_the_solvers_land() {
+    let err = assert_clean_failure(&saltus(&["run", "cases/chassagne2023/case01.toml"]));
+    assert!(err.contains("eulerian") && err.contains("not implemented"), "{err}");
+    let err = assert_clean_failure(&saltus(&["run", "does/not/exist.toml"]));
     assert!(err.contains("does/not/exist.toml"), "{err}");
+    let err = assert_clean_failure(
+        &check_scene("no_solver", "")
+            .status
+            .success()
+            .then(|| {
+                let d = tmp_dir("no_solver_run");
+                let p = write(&d, "scene.toml", BASE);
+                saltus(&["run", p.to_str().unwrap()])
+            })
+            .unwrap(),
+    );
+    assert!(err.contains("solver.type"), "{err}");
 }
