@@ -165,6 +165,7 @@ pub fn evaluate(
         EvalFamily::Drag => {
             let m: Box<dyn DragLaw> = closure_from_value(model, scene_family, src, "model")?;
             let re = need(input, "re_p", family, origin)?;
+            check_reynolds(re, origin)?;
             let mut cd = vec![0.0; n];
             m.cd_batch(re, &mut cd);
             out.push("cd", cd);
@@ -174,6 +175,7 @@ pub fn evaluate(
             let phi = need(input, "phi", family, origin)?;
             let re = need(input, "re_p", family, origin)?;
             check_fraction(phi, origin)?;
+            check_reynolds(re, origin)?;
             let mut f = vec![0.0; n];
             m.factor_batch(phi, re, &mut f);
             out.push("factor", f);
@@ -275,6 +277,13 @@ pub fn evaluate(
         }
     }
     Ok(out)
+}
+
+fn check_reynolds(re: &[f64], origin: &str) -> anyhow::Result<()> {
+    if let Some((i, r)) = re.iter().enumerate().find(|(_, r)| !(r.is_finite() && **r >= 0.0)) {
+        bail!("{origin}: row {}: re_p = {r}: allowed finite values >= 0", i + 2);
+    }
+    Ok(())
 }
 
 fn check_fraction(phi: &[f64], origin: &str) -> anyhow::Result<()> {

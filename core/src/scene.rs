@@ -204,7 +204,8 @@ pub fn parse_table(text: &str, file: &Path) -> Result<toml::Table> {
 }
 
 fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset.min(text.len())];
+    // spans are byte offsets; fall back to the whole text rather than slice mid-character
+    let before = text.get(..offset.min(text.len())).unwrap_or(text);
     let line = before.matches('\n').count() + 1;
     let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
     (line, column)
