@@ -20,29 +20,28 @@ pub struct LocalState {
 }
 
 impl LocalState {
-    /// Inertial number I = d |gamma_dot| / sqrt(p / rho_p) (Chassagne 2023 section 1,
-    /// Fry 2024 eq 34). Zero without shear; +inf when sheared at zero pressure.
-    pub fn inertial_number(&self) -> f64 {
+    /// `value` of a number that scales as 1/p (or 1/sqrt(p)) with the shear rate: zero
+    /// without shear, +inf when sheared at zero pressure, `value(|gamma_dot|)` otherwise.
+    fn at_positive_pressure(&self, value: impl FnOnce(f64) -> f64) -> f64 {
         let gamma = self.shear_rate.abs();
         if gamma == 0.0 {
             0.0
         } else if self.pressure <= 0.0 {
             f64::INFINITY
         } else {
-            self.diameter * gamma * (self.particle_density / self.pressure).sqrt()
+            value(gamma)
         }
     }
 
-    /// Viscous number J = eta_f |gamma_dot| / p (Fry 2024 eq 35), with the same limits.
+    /// Inertial number I = d |gamma_dot| / sqrt(p / rho_p) (Chassagne 2023 section 1,
+    /// Fry 2024 eq 34).
+    pub fn inertial_number(&self) -> f64 {
+        self.at_positive_pressure(|g| self.diameter * g * (self.particle_density / self.pressure).sqrt())
+    }
+
+    /// Viscous number J = eta_f |gamma_dot| / p (Fry 2024 eq 35).
     pub fn viscous_number(&self) -> f64 {
-        let gamma = self.shear_rate.abs();
-        if gamma == 0.0 {
-            0.0
-        } else if self.pressure <= 0.0 {
-            f64::INFINITY
-        } else {
-            self.fluid_viscosity * gamma / self.pressure
-        }
+        self.at_positive_pressure(|g| self.fluid_viscosity * g / self.pressure)
     }
 }
 
