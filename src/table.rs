@@ -53,6 +53,9 @@ impl Table {
                 let v: f64 = cell.parse().with_context(|| {
                     format!("{origin}: row {}, column `{}`: `{cell}` is not a number", i + 2, names[j])
                 })?;
+                if !v.is_finite() {
+                    bail!("{origin}: row {}, column `{}`: `{cell}` is not a finite number", i + 2, names[j]);
+                }
                 columns[j].push(v);
             }
         }
@@ -102,5 +105,7 @@ mod tests {
         assert_eq!(back, t);
         let e = Table::read_csv("a\nfoo\n".as_bytes(), "in.csv").unwrap_err();
         assert!(format!("{e:#}").contains("`foo` is not a number"));
+        let e = Table::read_csv("a\nNaN\n".as_bytes(), "in.csv").unwrap_err();
+        assert!(format!("{e:#}").contains("not a finite number"));
     }
 }

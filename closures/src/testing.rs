@@ -28,3 +28,33 @@ where
         assert!(back.validate().is_ok(), "default of {} is invalid", m.name);
     }
 }
+
+/// Every registered model of `family`, built from its default TOML through the scene
+/// machinery (so models added later are covered without writing a test).
+pub fn registered<T>(family: Family) -> Vec<Box<T>>
+where
+    T: ?Sized + saltus_core::Describe,
+    Box<T>: serde::de::DeserializeOwned,
+{
+    registry::models_of(family)
+        .into_iter()
+        .map(|m| {
+            let text = (m.default_toml)().unwrap_or_else(|e| panic!("{}: {e}", m.name));
+            let table: toml::Table = text.parse().unwrap_or_else(|e| panic!("{}: {e}", m.name));
+            saltus_core::scene::closure_from_value(
+                toml::Value::Table(table),
+                family,
+                std::path::Path::new("batch.toml"),
+                "closures.x",
+            )
+            .unwrap_or_else(|e| panic!("{}: {e}", m.name))
+        })
+        .collect()
+}
+
+/// Volume fractions and Reynolds numbers covering the valid ranges, bed to dilute.
+pub fn sample_inputs() -> (Vec<f64>, Vec<f64>) {
+    let phi: Vec<f64> = (0..97).map(|i| i as f64 * 0.0065).collect();
+    let re: Vec<f64> = (0..97).map(|i| 10f64.powf(-4.0 + i as f64 * 0.09)).collect();
+    (phi, re)
+}

@@ -107,16 +107,6 @@ mod tests {
             prop_assert!(d.cd(re * f) < d.cd(re));
             prop_assert!((d.cd_re(re) - d.cd(re) * re).abs() <= 1e-12 * d.cd_re(re).max(1.0));
         }
-
-        #[test]
-        fn batch_equals_scalar(re in proptest::collection::vec(1e-4f64..1e5, 1..64)) {
-            let d = Dallavalle::default();
-            let mut out = vec![0.0; re.len()];
-            d.cd_batch(&re, &mut out);
-            for (o, r) in out.iter().zip(&re) {
-                prop_assert_eq!(*o, d.cd(*r));
-            }
-        }
     }
 
     #[test]

@@ -59,17 +59,5 @@ mod tests {
         fn tends_to_one_as_phi_vanishes(phi in 0f64..1e-6, re in 0f64..1e5) {
             prop_assert_eq!(NoHindrance::default().factor(phi, re), 1.0);
         }
-
-        #[test]
-        fn batch_equals_scalar(v in proptest::collection::vec((0f64..0.99, 0f64..1e5), 1..64)) {
-            let h = NoHindrance::default();
-            let phi: Vec<f64> = v.iter().map(|x| x.0).collect();
-            let re: Vec<f64> = v.iter().map(|x| x.1).collect();
-            let mut out = vec![0.0; v.len()];
-            h.factor_batch(&phi, &re, &mut out);
-            for i in 0..v.len() {
-                prop_assert_eq!(out[i].to_bits(), h.factor(phi[i], re[i]).to_bits());
-            }
-        }
     }
 }

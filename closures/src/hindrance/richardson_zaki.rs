@@ -108,17 +108,5 @@ mod tests {
             prop_assert!(h.factor(phi, re) >= 1.0);
             prop_assert!(h.factor(phi + dphi, re) > h.factor(phi, re));
         }
-
-        #[test]
-        fn batch_equals_scalar(v in proptest::collection::vec((0f64..0.99, 0f64..1e5), 1..64)) {
-            let h = RichardsonZaki::default();
-            let phi: Vec<f64> = v.iter().map(|x| x.0).collect();
-            let re: Vec<f64> = v.iter().map(|x| x.1).collect();
-            let mut out = vec![0.0; v.len()];
-            h.factor_batch(&phi, &re, &mut out);
-            for i in 0..v.len() {
-                prop_assert_eq!(out[i].to_bits(), h.factor(phi[i], re[i]).to_bits());
-            }
-        }
     }
 }

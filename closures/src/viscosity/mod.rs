@@ -22,4 +22,17 @@ mod tests {
             saltus_core::closure::Family::Viscosity,
         );
     }
+
+    #[test]
+    fn every_model_batch_equals_scalar() {
+        use saltus_core::closure::Family;
+        let (phi, _) = crate::testing::sample_inputs();
+        for m in crate::testing::registered::<dyn saltus_core::EffectiveViscosity>(Family::Viscosity) {
+            let mut out = vec![0.0; phi.len()];
+            m.ratio_batch(&phi, &mut out);
+            for (o, p) in out.iter().zip(&phi) {
+                assert_eq!(o.to_bits(), m.ratio(*p).to_bits(), "{} at phi {p}", m.name());
+            }
+        }
+    }
 }
