@@ -211,7 +211,10 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, column)
 }
 
-fn de_path<T: DeserializeOwned>(value: toml::Value, file: &Path, prefix: &str) -> Result<T> {
+/// Deserialise `value` found at key path `prefix` of `file` into `T`, reporting the full
+/// key path of a missing, unknown or mistyped key. Solvers use it for their `[domain]`
+/// and `[solver]` tables.
+pub fn de_path<T: DeserializeOwned>(value: toml::Value, file: &Path, prefix: &str) -> Result<T> {
     serde_path_to_error::deserialize::<_, T>(value).map_err(|e| {
         let inner = e.path().to_string();
         let key = match (prefix.is_empty(), inner == ".") {
@@ -295,7 +298,8 @@ where
     })
 }
 
-fn check(file: &Path, key: &str, value: f64, range: ParamRange) -> Result<()> {
+/// An [`Error::OutOfRange`] naming `file` and `key` unless `range` contains `value`.
+pub fn check(file: &Path, key: &str, value: f64, range: ParamRange) -> Result<()> {
     if range.contains(value) {
         Ok(())
     } else {

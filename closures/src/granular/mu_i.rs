@@ -90,6 +90,26 @@ impl LocalRheology for MuI {
     fn packing(&self, x: f64) -> f64 {
         self.phi_c / (1.0 + self.b * x.max(0.0))
     }
+    fn control_of_packing(&self, phi: f64) -> f64 {
+        if phi >= self.phi_c {
+            0.0
+        } else if phi <= 0.0 || self.b == 0.0 || phi.is_nan() {
+            f64::INFINITY
+        } else {
+            (self.phi_c / phi - 1.0) / self.b
+        }
+    }
+    fn pressure_at(&self, s: &LocalState, x: f64) -> f64 {
+        // I = d |gamma_dot| sqrt(rho_p / p)  =>  p = rho_p (d gamma_dot / I)^2
+        if s.shear_rate == 0.0 || x.is_infinite() {
+            0.0
+        } else if x <= 0.0 || x.is_nan() {
+            f64::INFINITY
+        } else {
+            let r = s.diameter * s.shear_rate / x;
+            s.particle_density * r * r
+        }
+    }
 }
 
 #[typetag::serde(name = "mu_i")]
@@ -131,6 +151,38 @@ mod tests {
         assert_eq!(m.control_number(&state(0.0, 0.0)), 0.0);
         assert_eq!(m.control_number(&state(1.0, 0.0)), f64::INFINITY);
         assert!(!m.friction(m.control_number(&state(1.0, 0.0))).is_nan());
+    }
+
+    /// The closed-form inverses agree with the trait's generic bisection.
+    #[test]
+    fn inverses_match_bisection() {
+        struct Generic(MuI);
+        impl LocalRheology for Generic {
+            fn control_name(&self) -> &'static str {
+                "i"
+            }
+            fn control_number(&self, s: &LocalState) -> f64 {
+                self.0.control_number(s)
+            }
+            fn friction(&self, x: f64) -> f64 {
+                self.0.friction(x)
+            }
+            fn packing(&self, x: f64) -> f64 {
+                self.0.packing(x)
+            }
+        }
+        let m = MuI::default();
+        let g = Generic(m.clone());
+        for phi in [0.05, 0.3, 0.55, 0.6] {
+            let x = m.control_of_packing(phi);
+            assert_relative_eq!(x, g.control_of_packing(phi), max_relative = 1e-10);
+            assert_relative_eq!(m.packing(x), phi, max_relative = 1e-12);
+            let p = m.pressure_at(&state(5.0, 0.0), x);
+            assert_relative_eq!(p, g.pressure_at(&state(5.0, 0.0), x), max_relative = 1e-10);
+            assert_relative_eq!(m.control_number(&state(5.0, p)), x, max_relative = 1e-12);
+        }
+        assert_eq!(m.control_of_packing(0.61), 0.0);
+        assert_eq!(m.pressure_at(&state(0.0, 0.0), 0.1), 0.0);
     }
 
     #[test]

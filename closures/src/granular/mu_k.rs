@@ -115,6 +115,26 @@ impl LocalRheology for MuK {
     fn packing(&self, x: f64) -> f64 {
         self.phi_c / (1.0 + self.b * x.max(0.0).sqrt())
     }
+    fn control_of_packing(&self, phi: f64) -> f64 {
+        if phi >= self.phi_c {
+            0.0
+        } else if phi <= 0.0 || phi.is_nan() {
+            f64::INFINITY
+        } else {
+            MuK::control_of_packing(self, phi)
+        }
+    }
+    fn pressure_at(&self, s: &LocalState, x: f64) -> f64 {
+        // K = (eta_f |gamma_dot| + alpha rho_p d^2 gamma_dot^2) / p, eq 36
+        let g = s.shear_rate.abs();
+        if g == 0.0 || x.is_infinite() {
+            0.0
+        } else if x <= 0.0 || x.is_nan() {
+            f64::INFINITY
+        } else {
+            (s.fluid_viscosity * g + self.alpha * s.particle_density * s.diameter * s.diameter * g * g) / x
+        }
+    }
 }
 
 #[typetag::serde(name = "mu_k")]
@@ -162,6 +182,39 @@ mod tests {
         assert_relative_eq!(m.control_number(&s), j + 0.635 * i * i, max_relative = 1e-14);
         assert_eq!(m.control_number(&LocalState { pressure: 0.0, ..s }), f64::INFINITY);
         assert_eq!(m.control_number(&LocalState { shear_rate: 0.0, pressure: 0.0, ..s }), 0.0);
+    }
+
+    /// The closed-form inverses agree with the trait's generic bisection.
+    #[test]
+    fn inverses_match_bisection() {
+        struct Generic(MuK);
+        impl LocalRheology for Generic {
+            fn control_name(&self) -> &'static str {
+                "k"
+            }
+            fn control_number(&self, s: &LocalState) -> f64 {
+                self.0.control_number(s)
+            }
+            fn friction(&self, x: f64) -> f64 {
+                self.0.friction(x)
+            }
+            fn packing(&self, x: f64) -> f64 {
+                self.0.packing(x)
+            }
+        }
+        let m = MuK::default();
+        let g = Generic(m.clone());
+        let s = LocalState { shear_rate: 3.0, pressure: 0.0, diameter: 1e-3, particle_density: 2500.0, fluid_viscosity: 1e-3 };
+        for phi in [0.05, 0.3, 0.55, 0.61] {
+            let x = LocalRheology::control_of_packing(&m, phi);
+            assert_relative_eq!(x, g.control_of_packing(phi), max_relative = 1e-10);
+            assert_relative_eq!(m.packing(x), phi, max_relative = 1e-12);
+            let p = m.pressure_at(&s, x);
+            assert_relative_eq!(p, g.pressure_at(&s, x), max_relative = 1e-10);
+            assert_relative_eq!(m.control_number(&LocalState { pressure: p, ..s }), x, max_relative = 1e-12);
+        }
+        assert_eq!(LocalRheology::control_of_packing(&m, 0.7), 0.0);
+        assert_eq!(m.pressure_at(&LocalState { shear_rate: 0.0, ..s }, 0.1), 0.0);
     }
 
     #[test]

@@ -56,6 +56,52 @@ pub trait LocalRheology: Send + Sync {
     fn friction(&self, x: f64) -> f64;
     /// Volume fraction at control number `x >= 0`.
     fn packing(&self, x: f64) -> f64;
+    /// Inverse of [`LocalRheology::packing`]: the control number at which the packing law
+    /// gives `phi`; 0 at or above `packing(0)` (jammed), +inf at `phi <= 0`. The Eulerian
+    /// solver uses it for the shear-induced (dilatancy) pressure. The default bisects in
+    /// log x, assuming `packing` decreasing; models with a closed form override it.
+    fn control_of_packing(&self, phi: f64) -> f64 {
+        if phi >= self.packing(0.0) {
+            return 0.0;
+        }
+        if phi <= 0.0 || phi.is_nan() {
+            return f64::INFINITY;
+        }
+        let (mut lo, mut hi) = (-30.0f64, 30.0f64);
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if self.packing(mid.exp()) > phi {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        (0.5 * (lo + hi)).exp()
+    }
+    /// Pressure at which [`LocalRheology::control_number`] of `s` (its own `pressure`
+    /// ignored) equals `x > 0`: with the packing inverse, the shear-induced pressure
+    /// p(phi, gamma_dot) of the dilatancy law. 0 when `s` is not sheared or `x` is
+    /// infinite. The default bisects in log p (the control number decreases with p);
+    /// models with a closed form override it.
+    fn pressure_at(&self, s: &LocalState, x: f64) -> f64 {
+        if s.shear_rate == 0.0 || x.is_infinite() {
+            return 0.0;
+        }
+        if x <= 0.0 || x.is_nan() {
+            return f64::INFINITY;
+        }
+        let at = |lp: f64| self.control_number(&LocalState { pressure: lp.exp(), ..*s });
+        let (mut lo, mut hi) = (-60.0f64, 60.0f64);
+        for _ in 0..120 {
+            let mid = 0.5 * (lo + hi);
+            if at(mid) > x {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        (0.5 * (lo + hi)).exp()
+    }
     /// Friction and packing over a slice.
     fn eval_batch(&self, x: &[f64], mu: &mut [f64], phi: &mut [f64]) {
         for ((m, p), &xi) in mu.iter_mut().zip(phi.iter_mut()).zip(x) {
