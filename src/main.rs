@@ -131,8 +131,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let s = Scene::from_file_with(&scene, &set)?;
             let out = out.unwrap_or_else(|| default_out(&s));
             let progress = std::io::stderr().is_terminal();
-            let summary = saltus_solvers::run(&s, &out, progress)?;
-            println!("{summary}");
+            let report = saltus::runner::run_scene(&s, &out, progress)?;
+            println!("{report}");
         }
         Command::Closure { command } => match command {
             ClosureCommand::Eval { family, model, input, output, seed } => {

@@ -1,40 +1,50 @@
 //! # saltus-solvers
 //!
-//! Solvers of saltus. The entry point [`run`] dispatches on the scene's `[solver] type`.
-//! The Eulerian two-fluid solver and the Lagrangian DEM solver plug in here; until they
-//! land, a scene that asks for one is refused with a clear message rather than a stub
-//! result.
+//! Solvers of saltus. The entry point [`run`] dispatches on the scene's `[solver] type`:
+//! `eulerian` ([`eulerian`], the two-fluid column of Chassagne et al. 2023) runs;
+//! `lagrangian` (DEM coupled to the column) is refused with a clear message until it
+//! lands. [`column`] is the fluid column shared by both.
 
 // Errors carry file, key and message for the user; they are built once per failed run,
 // never in a hot loop, so their size does not matter.
 #![allow(clippy::result_large_err)]
 
 pub mod column;
+pub mod eulerian;
+pub mod output;
 
 use std::fmt;
 use std::path::Path;
+use std::time::Instant;
 
 use saltus_core::scene::Scene;
 use saltus_core::Error;
 
-/// Solvers the program knows, with whether this build implements them.
-pub const SOLVERS: [(&str, bool); 2] = [("eulerian", false), ("lagrangian", false)];
+pub use eulerian::Progress;
+pub use output::{Profiles, Summary};
 
-/// Short result of a run, printed by `saltus run`.
+/// Solvers the program knows, with whether this build implements them.
+pub const SOLVERS: [(&str, bool); 2] = [("eulerian", true), ("lagrangian", false)];
+
+/// Result of a run: what was written, and a paragraph for the terminal.
 #[derive(Clone, Debug, Default)]
-pub struct RunSummary {
+pub struct RunReport {
+    /// profiles at the end of the run
+    pub profiles: Profiles,
+    /// the summary written to `summary.json`
+    pub summary: Summary,
     /// one paragraph
     pub text: String,
 }
 
-impl fmt::Display for RunSummary {
+impl fmt::Display for RunReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.text)
     }
 }
 
-/// Run `scene`, writing its outputs into `out`.
-pub fn run(scene: &Scene, _out: &Path, _progress: bool) -> Result<RunSummary, Error> {
+/// Name of the scene's solver, checked against [`SOLVERS`].
+pub fn solver_name(scene: &Scene) -> Result<&str, Error> {
     let file = scene.path.display();
     let solver = scene.solver.as_ref().and_then(|t| t.get("type")).and_then(|v| v.as_str()).ok_or_else(|| {
         Error::Invalid(format!(
@@ -47,8 +57,114 @@ pub fn run(scene: &Scene, _out: &Path, _progress: bool) -> Result<RunSummary, Er
             "{file}: key `solver.type`: unknown solver `{solver}`; known: {}",
             SOLVERS.map(|s| s.0).join(", ")
         ))),
-        Some(_) => Err(Error::Invalid(format!(
-            "{file}: solver `{solver}` is not implemented in this version yet; use `saltus check` and `saltus closure` meanwhile"
+        Some((_, false)) => Err(Error::Invalid(format!(
+            "{file}: solver `{solver}` is not implemented in this version yet; use `solver.type = \"eulerian\"`"
         ))),
+        Some(_) => Ok(solver),
     }
+}
+
+/// Run `scene`, writing its outputs into `out`. `observer` sees every accepted step and
+/// may stop the run by returning `false`. A run that breaks down writes the last good
+/// state and a summary carrying the error, then returns the error.
+pub fn run(scene: &Scene, out: &Path, observer: &mut dyn FnMut(&Progress) -> bool) -> Result<RunReport, Error> {
+    solver_name(scene)?;
+    let cfg = eulerian::Config::from_scene(scene)?;
+    let mut model = eulerian::Eulerian::new(scene, cfg)?;
+    let start = Instant::now();
+    let ending = model.run(observer);
+    let wall = start.elapsed().as_secs_f64();
+    let report = eulerian_report(scene, &mut model, &ending, wall);
+    output::write_run(out, scene, &report.profiles, &report.summary)?;
+    if let eulerian::Ending::Unstable(b) = ending {
+        return Err(Error::Invalid(format!(
+            "{}: run stopped, unstable at {b}; the state at t = {:.6} s is written to {}",
+            scene.path.display(),
+            model.time(),
+            out.display()
+        )));
+    }
+    Ok(report)
+}
+
+/// Profiles, summary and paragraph of an Eulerian run.
+pub fn eulerian_report(
+    scene: &Scene,
+    m: &mut eulerian::Eulerian<'_>,
+    ending: &eulerian::Ending,
+    wall: f64,
+) -> RunReport {
+    let derived = m.derived();
+    let mut p = Profiles::default();
+    p.push("z", m.z().to_vec());
+    p.push("phi", m.phi().to_vec());
+    p.push("u_f", m.u_f().to_vec());
+    p.push("u_p", m.u_p().to_vec());
+    if m.is_kinetic() {
+        p.push("theta_g", m.temperature().to_vec());
+    }
+    p.push("w_p", derived.w_p.clone());
+    p.push("p_p", derived.p_p.clone());
+    p.push("tau_p", derived.tau_p.clone());
+    p.push("tau_f", derived.tau_f.clone());
+    p.push("nu_t", m.eddy_viscosity().to_vec());
+    let q: Vec<f64> = m.phi().iter().zip(m.u_p()).map(|(a, b)| a.max(0.0) * b).collect();
+    p.push("q_s", q.clone());
+    p.push(if m.is_kinetic() { "inertial_number" } else { "control_number" }, derived.control.clone());
+
+    let g = scene.physics.gravity;
+    let d = scene.particles.diameter;
+    let sm1 = scene.submerged_ratio();
+    let qs: f64 = q.iter().zip(m.dz()).map(|(q, h)| q * h).sum();
+    let qscale = (sm1.abs() * g * d * d * d).sqrt();
+    let buoyant = (scene.particles.density - scene.fluid.density).abs() * g * d;
+    let tau_max = derived.tau_f.iter().fold(0.0f64, |a, t| a.max(t.abs()));
+    let cfg = m.config().clone();
+    let slope = scene.physics.slope;
+    let cos = (1.0 - slope * slope).max(0.0).sqrt();
+    let shields_nominal = (slope > 0.0 && cfg.domain.water_depth > 0.0 && sm1 > 0.0)
+        .then(|| scene.fluid.density * g * slope * cfg.domain.water_depth / (buoyant * cos));
+    let (z1, z99) = output::flux_levels(m.faces(), &q, 0.01, 0.99);
+    let (ending_name, error) = match ending {
+        eulerian::Ending::Steady => ("steady", None),
+        eulerian::Ending::EndTime => ("end_time", None),
+        eulerian::Ending::MaxSteps => ("max_steps", None),
+        eulerian::Ending::Unstable(b) => ("unstable", Some(b.to_string())),
+    };
+    let summary = Summary {
+        scene: scene.meta.name.clone(),
+        solver: "eulerian".into(),
+        qs,
+        qs_star: if qscale > 0.0 { qs / qscale } else { f64::NAN },
+        shields: if buoyant > 0.0 { tau_max / buoyant } else { f64::NAN },
+        shields_nominal,
+        bed_height: z1,
+        transport_layer_thickness: z99 - z1,
+        steady: matches!(ending, eulerian::Ending::Steady),
+        ending: ending_name.into(),
+        sim_time_s: m.time(),
+        steps: m.steps(),
+        rejected_steps: m.rejected_steps(),
+        wall_time_s: wall,
+        mass_error: m.mass_error(),
+        residual: m.residual(),
+        cells: m.len(),
+        error,
+    };
+    let text = format!(
+        "{}: {} after {:.3} s simulated ({} steps, {} rejected) in {:.3} s wall time; qs* = {:.4} (qs = {:.4e} m^2/s), Shields {:.3}, bed surface {:.4} m, transport layer {:.4} m, mass error {:.1e}",
+        scene.meta.name,
+        if summary.steady { "steady" } else { ending_name },
+        summary.sim_time_s,
+        summary.steps,
+        summary.rejected_steps,
+        wall,
+        summary.qs_star,
+        qs,
+        summary.shields,
+        z1,
+        summary.transport_layer_thickness,
+        summary.mass_error
+    );
+    RunReport { profiles: p, summary, text }
 }

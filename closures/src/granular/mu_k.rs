@@ -204,7 +204,13 @@ mod tests {
         }
         let m = MuK::default();
         let g = Generic(m.clone());
-        let s = LocalState { shear_rate: 3.0, pressure: 0.0, diameter: 1e-3, particle_density: 2500.0, fluid_viscosity: 1e-3 };
+        let s = LocalState {
+            shear_rate: 3.0,
+            pressure: 0.0,
+            diameter: 1e-3,
+            particle_density: 2500.0,
+            fluid_viscosity: 1e-3,
+        };
         for phi in [0.05, 0.3, 0.55, 0.61] {
             let x = LocalRheology::control_of_packing(&m, phi);
             assert_relative_eq!(x, g.control_of_packing(phi), max_relative = 1e-10);

@@ -1,0 +1,194 @@
+//! What a run leaves behind: cell profiles, a summary, the resolved scene and a manifest.
+//! One contract for both solvers.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use saltus_core::scene::Scene;
+use saltus_core::Error;
+use serde::{Deserialize, Serialize};
+
+/// Named columns of equal length, written as `profiles.csv`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Profiles {
+    /// (name, values) in column order; the first is `z`
+    pub columns: Vec<(String, Vec<f64>)>,
+}
+
+impl Profiles {
+    /// Add a column.
+    pub fn push(&mut self, name: &str, values: Vec<f64>) {
+        self.columns.push((name.to_string(), values));
+    }
+    /// Column by name.
+    pub fn get(&self, name: &str) -> Option<&[f64]> {
+        self.columns.iter().find(|(n, _)| n == name).map(|(_, v)| v.as_slice())
+    }
+    /// CSV text with a header line.
+    pub fn to_csv(&self) -> String {
+        let mut s = self.columns.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(",");
+        s.push('\n');
+        let rows = self.columns.first().map_or(0, |c| c.1.len());
+        for r in 0..rows {
+            for (k, (_, v)) in self.columns.iter().enumerate() {
+                if k > 0 {
+                    s.push(',');
+                }
+                let _ = write!(s, "{:.10e}", v[r]);
+            }
+            s.push('\n');
+        }
+        s
+    }
+}
+
+/// `summary.json`.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+pub struct Summary {
+    /// scene name
+    pub scene: String,
+    /// solver
+    pub solver: String,
+    /// transport rate per unit width, integral of phi u_p dz (m^2/s)
+    pub qs: f64,
+    /// qs / sqrt((s - 1) g d^3)
+    pub qs_star: f64,
+    /// largest fluid shear stress (viscous + turbulent) over (rho_p - rho_f) g d
+    pub shields: f64,
+    /// rho_f g sin(alpha) h_w / ((rho_p - rho_f) g cos(alpha) d) with the scene's water depth
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shields_nominal: Option<f64>,
+    /// level below which 1 % of qs flows (m): the bed surface
+    pub bed_height: f64,
+    /// distance between the levels below which 1 % and 99 % of qs flow (m)
+    pub transport_layer_thickness: f64,
+    /// steady-state criterion met
+    pub steady: bool,
+    /// steady, end_time, max_steps or unstable
+    pub ending: String,
+    /// simulated time (s)
+    pub sim_time_s: f64,
+    /// accepted steps
+    pub steps: usize,
+    /// rejected (retried) steps
+    pub rejected_steps: usize,
+    /// wall-clock time of the solve (s)
+    pub wall_time_s: f64,
+    /// relative change of the sediment mass over the run
+    pub mass_error: f64,
+    /// last steady residual (1/s)
+    pub residual: f64,
+    /// number of cells
+    pub cells: usize,
+    /// why the run stopped early, if it did
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+/// `manifest.json`: enough to reproduce the run.
+#[derive(Clone, Debug, Serialize)]
+pub struct Manifest<'a> {
+    /// program version
+    pub version: &'static str,
+    /// git revision of the build, when built from a checkout
+    pub git_revision: &'static str,
+    /// scene file as given
+    pub scene_file: String,
+    /// scene seed
+    pub seed: u64,
+    /// closure model per family
+    pub closures: Vec<(&'static str, &'a str)>,
+    /// output files
+    pub files: Vec<&'static str>,
+    /// wall-clock time of the solve (s)
+    pub wall_time_s: f64,
+}
+
+/// Git revision baked in at build time, or `unknown`.
+pub const GIT_REVISION: &str = match option_env!("SALTUS_GIT_REVISION") {
+    Some(r) => r,
+    None => "unknown",
+};
+
+fn io(file: PathBuf) -> impl FnOnce(std::io::Error) -> Error {
+    move |source| Error::Io { file, source }
+}
+
+/// Write `profiles.csv`, `summary.json`, `scene.toml` (resolved) and `manifest.json` into
+/// `dir` (created if needed).
+pub fn write_run(dir: &Path, scene: &Scene, profiles: &Profiles, summary: &Summary) -> Result<(), Error> {
+    std::fs::create_dir_all(dir).map_err(io(dir.to_path_buf()))?;
+    let put = |name: &str, text: String| -> Result<(), Error> {
+        let f = dir.join(name);
+        std::fs::write(&f, text).map_err(io(f))
+    };
+    put("profiles.csv", profiles.to_csv())?;
+    let json = serde_json::to_string_pretty(summary).map_err(|e| Error::Invalid(format!("summary: {e}")))?;
+    put("summary.json", json + "\n")?;
+    put("scene.toml", scene.to_toml()?)?;
+    let cl = &scene.closures;
+    let name = |m: Option<&dyn saltus_core::Describe>| m.map_or("none", |m| m.name());
+    let manifest = Manifest {
+        version: env!("CARGO_PKG_VERSION"),
+        git_revision: GIT_REVISION,
+        scene_file: scene.path.display().to_string(),
+        seed: scene.seed,
+        closures: vec![
+            ("drag", name(cl.drag.as_deref().map(|m| m as &dyn saltus_core::Describe))),
+            ("hindrance", name(cl.hindrance.as_deref().map(|m| m as &dyn saltus_core::Describe))),
+            ("viscosity", name(cl.viscosity.as_deref().map(|m| m as &dyn saltus_core::Describe))),
+            ("granular", name(cl.granular.as_deref().map(|m| m as &dyn saltus_core::Describe))),
+            ("turbulence", name(cl.turbulence.as_deref().map(|m| m as &dyn saltus_core::Describe))),
+            ("fluctuation", name(cl.fluctuation.as_deref().map(|m| m as &dyn saltus_core::Describe))),
+        ],
+        files: vec!["profiles.csv", "summary.json", "scene.toml", "manifest.json"],
+        wall_time_s: summary.wall_time_s,
+    };
+    let json = serde_json::to_string_pretty(&manifest).map_err(|e| Error::Invalid(format!("manifest: {e}")))?;
+    put("manifest.json", json + "\n")
+}
+
+/// Levels (m) below which the fractions `lo` and `hi` of the integral of `q dz` lie,
+/// interpolated linearly inside cells.
+pub fn flux_levels(faces: &[f64], q: &[f64], lo: f64, hi: f64) -> (f64, f64) {
+    let total: f64 = q.iter().zip(faces.windows(2)).map(|(q, w)| q * (w[1] - w[0])).sum();
+    if total.abs() <= 0.0 || !total.is_finite() {
+        return (f64::NAN, f64::NAN);
+    }
+    let level = |frac: f64| {
+        let target = frac * total;
+        let mut acc = 0.0;
+        for (q, w) in q.iter().zip(faces.windows(2)) {
+            let add = q * (w[1] - w[0]);
+            if (acc + add) / total >= frac && add != 0.0 {
+                return w[0] + (target - acc) / add * (w[1] - w[0]);
+            }
+            acc += add;
+        }
+        faces[faces.len() - 1]
+    };
+    (level(lo), level(hi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn flux_levels_of_a_uniform_layer() {
+        let faces: Vec<f64> = (0..=10).map(|i| i as f64).collect();
+        let q = [0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0];
+        let (a, b) = flux_levels(&faces, &q, 0.01, 0.99);
+        assert!((a - 2.04).abs() < 1e-12 && (b - 5.96).abs() < 1e-12, "{a} {b}");
+    }
+
+    #[test]
+    fn csv_has_header_and_rows() {
+        let mut p = Profiles::default();
+        p.push("z", vec![0.5, 1.5]);
+        p.push("phi", vec![0.6, 0.0]);
+        let csv = p.to_csv();
+        assert!(csv.starts_with("z,phi\n"));
+        assert_eq!(csv.lines().count(), 3);
+    }
+}
