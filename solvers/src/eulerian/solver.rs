@@ -164,6 +164,18 @@ pub struct Eulerian<'a> {
     tri: Tridiagonal,
 }
 
+/// minmod limiter: the smaller slope when both have the same sign, else 0.
+#[inline]
+fn minmod(a: f64, b: f64) -> f64 {
+    if a * b <= 0.0 {
+        0.0
+    } else if a.abs() < b.abs() {
+        a
+    } else {
+        b
+    }
+}
+
 fn wall_stencil(a: f64, b: f64) -> [f64; 3] {
     // du/ds at the wall from u_w, u(a), u(b), exact for quadratics: [c_w, c_a, c_b]
     [-(a + b) / (a * b), b / (a * (b - a)), -a / (b * (b - a))]
@@ -777,9 +789,19 @@ impl<'a> Eulerian<'a> {
             } else {
                 cl -= m * gw;
             }
+            // second-order settling at steady state: the implicit upwind value plus a
+            // deferred MUSCL correction with the minmod limiter (zero at an interface with
+            // clear fluid, so phi stays >= 0); the steady balance is then
+            // dp/dz = -phi_face (rho_p - rho_f) g cos to second order
+            let (down, upv, beyond) = if up == r {
+                (self.phi[l], self.phi[r], if r + 1 < n { self.phi[r + 1] } else { self.phi[r] })
+            } else {
+                (self.phi[r], self.phi[l], if l > 0 { self.phi[l - 1] } else { self.phi[l] })
+            };
+            let correction = 0.5 * minmod(down - upv, upv - beyond);
             coeffs[3 * j] = cl;
             coeffs[3 * j + 1] = cr;
-            coeffs[3 * j + 2] = -m * (pr.b - pl.b) / h;
+            coeffs[3 * j + 2] = -m * (pr.b - pl.b) / h - m * gw * correction;
         }
         let t = &mut self.tri;
         for i in 0..n {
