@@ -1,7 +1,8 @@
 //! The `saltus` command-line program's library: closure listing, evaluation of one closure
-//! on a CSV, closure comparison plots, and the run driver. No physics lives here: every
-//! number comes from a closure or a solver.
+//! on a CSV, closure comparison plots, the run driver and scene comparisons. No physics
+//! lives here: every number comes from a closure or a solver.
 
+pub mod compare;
 pub mod eval;
 pub mod listing;
 pub mod plot;

@@ -50,6 +50,16 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Run several variants of one scene in parallel and compare them: a table of their
+    /// summaries (comparison.csv) and their profiles on one figure (comparison.png).
+    Compare {
+        /// compare file: `base` scene, `[meta]`, `[[variant]]` tables with `name` and `set`
+        file: PathBuf,
+        /// output folder (default: out/<meta.name>); each variant writes into a folder of
+        /// its own inside it
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Evaluate or plot closures on their own.
     Closure {
         #[command(subcommand)]
@@ -129,10 +139,47 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Run { scene, set, out } => {
             let s = Scene::from_file_with(&scene, &set)?;
-            let out = out.unwrap_or_else(|| default_out(&s));
-            let progress = std::io::stderr().is_terminal();
-            let report = saltus::runner::run_scene(&s, &out, progress)?;
-            println!("{report}");
+            let out = out.unwrap_or_else(|| saltus::runner::default_out(&s));
+            let bar = saltus::runner::progress_bar(std::io::stderr().is_terminal());
+            let outcome = saltus::runner::run_scene(&s, &out, &bar);
+            for w in &outcome.warnings {
+                eprintln!("warning: {w}");
+            }
+            if let Some(e) = outcome.error {
+                return Err(match &outcome.figure {
+                    Some(png) => anyhow::anyhow!("{e}; drawn in {}", png.display()),
+                    None => e.into(),
+                });
+            }
+            if let Some(report) = &outcome.report {
+                println!("{report}");
+            }
+            println!("outputs: {}", out.display());
+            if let Some(png) = &outcome.figure {
+                println!("figure:  {}", png.display());
+            }
+        }
+        Command::Compare { file, out } => {
+            let cmp = saltus::compare::load(&file)?;
+            let out = out.unwrap_or_else(|| saltus::compare::default_out(&cmp));
+            let report = saltus::compare::run(&cmp, &out, std::io::stderr().is_terminal())?;
+            for w in &report.warnings {
+                eprintln!("warning: {w}");
+            }
+            print!("{}", report.text_table());
+            println!("outputs: {}", out.display());
+            println!("table:   {}", report.table.display());
+            if let Some(png) = &report.figure {
+                println!("figure:  {}", png.display());
+            }
+            let failed = report.failures();
+            if failed > 0 {
+                anyhow::bail!(
+                    "{}: {failed} of {} variants failed (see the error column)",
+                    file.display(),
+                    report.runs.len()
+                );
+            }
         }
         Command::Closure { command } => match command {
             ClosureCommand::Eval { family, model, input, output, seed } => {
@@ -160,18 +207,4 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         },
     }
     Ok(())
-}
-
-fn default_out(s: &Scene) -> PathBuf {
-    match &s.output.dir {
-        Some(d) => PathBuf::from(d),
-        None => {
-            let name = if s.meta.name.is_empty() {
-                s.path.file_stem().map_or_else(|| "run".into(), |x| x.to_string_lossy().into_owned())
-            } else {
-                s.meta.name.clone()
-            };
-            PathBuf::from("out").join(name)
-        }
-    }
 }

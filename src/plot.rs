@@ -1,13 +1,19 @@
-//! `saltus closure plot`: closure curves side by side, from a comparison file.
+//! Figures: closure curves side by side (`saltus closure plot`) and run profiles against z
+//! (`saltus run`, `saltus compare`).
 //!
-//! A comparison file (see `cases/closures/`) holds figures; each figure sweeps one input
-//! of one family over a range for several models, writes `<name>.csv` (the swept input
-//! then one column per model) and `<name>.png`.
+//! A closure comparison file (see `cases/closures/`) holds figures; each figure sweeps one
+//! input of one family over a range for several models, writes `<name>.csv` (the swept
+//! input then one column per model) and `<name>.png`.
+//!
+//! A profile figure ([`draw_profiles`]) has one panel per quantity (phi, velocities,
+//! granular temperature) against z, one curve per run, and the reference data as symbols.
 
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 use anyhow::{anyhow, bail, Context};
 use plotters::prelude::*;
+use saltus_solvers::Profiles;
 use serde::Deserialize;
 
 use crate::eval::{evaluate, parse_model, EvalFamily};
@@ -147,10 +153,16 @@ pub fn run(path: &Path, out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
 }
 
 /// Register the bundled font once (plotters draws text with ab_glyph, no system fonts).
+/// Safe to call from several threads; only the first call registers.
 pub fn register_font() -> anyhow::Result<()> {
     static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
-    plotters::style::register_font("sans-serif", FontStyle::Normal, FONT)
-        .map_err(|_| anyhow!("bundled font is invalid"))
+    static DONE: OnceLock<bool> = OnceLock::new();
+    let ok = *DONE.get_or_init(|| plotters::style::register_font("sans-serif", FontStyle::Normal, FONT).is_ok());
+    if ok {
+        Ok(())
+    } else {
+        bail!("bundled font is invalid")
+    }
 }
 
 const COLORS: [RGBColor; 8] = [
@@ -233,5 +245,291 @@ fn draw(title: &str, fig: &Figure, t: &Table, png: &Path) -> anyhow::Result<()> 
         (false, false) => body!(builder.build_cartesian_2d(x0..x1, y0..y1)?),
     }
     root.present()?;
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------
+// Run profiles against z
+
+/// One panel of a profile figure: some profile columns against z.
+#[derive(Clone, Debug)]
+pub struct Panel {
+    /// caption above the panel
+    pub title: &'static str,
+    /// x-axis description
+    pub x_desc: &'static str,
+    /// profile columns drawn (reference columns of the same names are overlaid)
+    pub columns: &'static [&'static str],
+    /// logarithmic x axis
+    pub log_x: bool,
+    /// legend corner
+    pub legend: SeriesLabelPosition,
+}
+
+const PHI_PANEL: Panel = Panel {
+    title: "volume fraction",
+    x_desc: "phi [-]",
+    columns: &["phi"],
+    log_x: false,
+    legend: SeriesLabelPosition::UpperRight,
+};
+const THETA_PANEL: Panel = Panel {
+    title: "granular temperature",
+    x_desc: "theta_g [m^2/s^2]",
+    columns: &["theta_g"],
+    log_x: true,
+    legend: SeriesLabelPosition::UpperLeft,
+};
+
+/// Panels of `profiles.png` (one run): phi; u_p and u_f; theta_g when present.
+pub const RUN_PANELS: [Panel; 3] = [
+    PHI_PANEL,
+    Panel {
+        title: "velocities",
+        x_desc: "u [m/s]",
+        columns: &["u_p", "u_f"],
+        log_x: false,
+        legend: SeriesLabelPosition::UpperLeft,
+    },
+    THETA_PANEL,
+];
+
+/// Panels of `comparison.png` (several runs): phi; u_p; theta_g when present.
+pub const COMPARE_PANELS: [Panel; 3] = [
+    PHI_PANEL,
+    Panel {
+        title: "particle velocity",
+        x_desc: "u_p [m/s]",
+        columns: &["u_p"],
+        log_x: false,
+        legend: SeriesLabelPosition::UpperLeft,
+    },
+    THETA_PANEL,
+];
+
+/// Particle-phase columns are drawn only where phi >= this (where phi is known): above
+/// the granular layer a particle velocity or temperature means nothing (the DEM reference
+/// files hold zeros there).
+pub const PARTICLE_PHI_MIN: f64 = 1e-3;
+
+/// Particle-phase columns, masked by [`PARTICLE_PHI_MIN`].
+const PARTICLE_COLUMNS: [&str; 3] = ["u_p", "theta_g", "w_p"];
+
+/// Most reference symbols drawn per column (rows are thinned evenly beyond).
+const MAX_MARKS: usize = 160;
+
+/// Reference data of a profile figure: a legend label and named columns (one is `z`).
+pub struct Reference<'a> {
+    /// legend label
+    pub label: &'a str,
+    /// columns
+    pub table: &'a Table,
+}
+
+/// Anything with named columns.
+trait Columns {
+    fn column(&self, name: &str) -> Option<&[f64]>;
+}
+
+impl Columns for Profiles {
+    fn column(&self, name: &str) -> Option<&[f64]> {
+        self.get(name)
+    }
+}
+
+impl Columns for Table {
+    fn column(&self, name: &str) -> Option<&[f64]> {
+        self.get(name)
+    }
+}
+
+/// (x, z) points of column `name` against `z`: finite, positive on a log axis, and for
+/// particle-phase columns only where phi >= [`PARTICLE_PHI_MIN`].
+fn points(c: &dyn Columns, name: &str, log_x: bool) -> Vec<(f64, f64)> {
+    let (Some(x), Some(z)) = (c.column(name), c.column("z")) else {
+        return Vec::new();
+    };
+    let phi = if PARTICLE_COLUMNS.contains(&name) { c.column("phi") } else { None };
+    x.iter()
+        .zip(z)
+        .enumerate()
+        .filter(|(i, (x, z))| {
+            x.is_finite()
+                && z.is_finite()
+                && (!log_x || **x > 0.0)
+                && match phi {
+                    None => true,
+                    Some(p) => p.get(*i).is_some_and(|p| *p >= PARTICLE_PHI_MIN),
+                }
+        })
+        .map(|(_, (&x, &z))| (x, z))
+        .collect()
+}
+
+struct Line {
+    label: String,
+    color: RGBColor,
+    points: Vec<(f64, f64)>,
+}
+
+struct Marks {
+    label: String,
+    color: RGBColor,
+    triangle: bool,
+    points: Vec<(f64, f64)>,
+}
+
+fn axis_range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if !lo.is_finite() || !hi.is_finite() {
+        return if log { (1e-6, 1.0) } else { (0.0, 1.0) };
+    }
+    if log {
+        // the bed holds temperatures many decades below the transport layer's
+        let lo = lo.max(hi * 1e-8);
+        if hi <= lo {
+            return (lo / 10.0, lo * 10.0);
+        }
+        (lo / 1.5, hi * 1.5)
+    } else {
+        // keep zero in view: profiles start from a bed at rest
+        let (lo, hi) = (lo.min(0.0), hi.max(0.0));
+        if hi <= lo {
+            return (lo - 1.0, lo + 1.0);
+        }
+        let pad = 0.05 * (hi - lo);
+        (if lo < 0.0 { lo - pad } else { lo }, hi + pad)
+    }
+}
+
+/// Draw `curves` (legend label, profiles) on the `panels` that any of them fills, with the
+/// reference columns of the same names as symbols, into `png`. Panels whose columns no
+/// curve has (theta_g of a local rheology) are left out.
+pub fn draw_profiles(
+    title: &str,
+    panels: &[Panel],
+    curves: &[(String, &Profiles)],
+    reference: Option<&Reference>,
+    png: &Path,
+) -> anyhow::Result<()> {
+    register_font()?;
+    let shown: Vec<&Panel> =
+        panels.iter().filter(|p| curves.iter().any(|(_, c)| p.columns.iter().any(|k| c.get(k).is_some()))).collect();
+    if shown.is_empty() {
+        bail!("no profile column to draw");
+    }
+    let (z0, z1) = {
+        let z = curves.iter().filter_map(|(_, c)| c.get("z")).flatten().copied().filter(|z| z.is_finite());
+        let (lo, hi) = z.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), z| (a.min(z), b.max(z)));
+        if !(lo.is_finite() && hi > lo) {
+            bail!("the profiles have no z extent");
+        }
+        // no padding below a bottom at z = 0 (a `-0.0` label)
+        let pad = 0.02 * (hi - lo);
+        (if lo >= 0.0 { 0.0 } else { lo - pad }, hi + pad)
+    };
+    let width = (380 * shown.len() as u32 + 20).max(860);
+    let root = BitMapBackend::new(png, (width, 680)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let root = root.titled(title, ("sans-serif", 22))?;
+    for (panel, area) in shown.iter().zip(root.split_evenly((1, shown.len()))) {
+        draw_panel(&area, panel, curves, reference, (z0, z1))?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+fn draw_panel(
+    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    panel: &Panel,
+    curves: &[(String, &Profiles)],
+    reference: Option<&Reference>,
+    (z0, z1): (f64, f64),
+) -> anyhow::Result<()> {
+    let ncols = panel.columns.len();
+    let mut lines = Vec::new();
+    for (ci, (label, prof)) in curves.iter().enumerate() {
+        for (ki, &col) in panel.columns.iter().enumerate() {
+            let pts = points(*prof, col, panel.log_x);
+            if pts.is_empty() {
+                continue;
+            }
+            let label = match (curves.len(), ncols) {
+                (1, _) => col.to_string(),
+                (_, 1) => label.clone(),
+                _ => format!("{label} {col}"),
+            };
+            lines.push(Line { label, color: COLORS[(ci * ncols + ki) % COLORS.len()], points: pts });
+        }
+    }
+    let mut marks = Vec::new();
+    if let Some(r) = reference {
+        for (ki, &col) in panel.columns.iter().enumerate() {
+            let all = points(r.table, col, panel.log_x);
+            if all.is_empty() {
+                continue;
+            }
+            let stride = all.len().div_ceil(MAX_MARKS).max(1);
+            let pts: Vec<_> = all.into_iter().step_by(stride).filter(|p| p.1 >= z0 && p.1 <= z1).collect();
+            let label = if ncols == 1 { r.label.to_string() } else { format!("{} {col}", r.label) };
+            let color = if curves.len() == 1 { COLORS[ki % COLORS.len()] } else { BLACK };
+            marks.push(Marks { label, color, triangle: ki > 0, points: pts });
+        }
+    }
+    let xs = lines.iter().flat_map(|l| &l.points).chain(marks.iter().flat_map(|m| &m.points)).map(|p| p.0);
+    let (x0, x1) = axis_range(xs, panel.log_x);
+    let mut builder = ChartBuilder::on(area);
+    builder.caption(panel.title, ("sans-serif", 18)).margin(12).x_label_area_size(42).y_label_area_size(62);
+    macro_rules! body {
+        ($chart:expr) => {{
+            let mut chart = $chart;
+            let log_label = |x: &f64| format!("{x:.0e}");
+            let mut mesh = chart.configure_mesh();
+            mesh.x_desc(panel.x_desc).y_desc("z [m]").x_labels(6).label_style(("sans-serif", 14));
+            if panel.log_x {
+                mesh.x_label_formatter(&log_label);
+            }
+            mesh.draw()?;
+            for m in &marks {
+                let color = m.color;
+                let inside = m.points.iter().copied().filter(|p| p.0 >= x0 && p.0 <= x1);
+                if m.triangle {
+                    chart
+                        .draw_series(inside.map(|p| TriangleMarker::new(p, 4, color.stroke_width(1))))?
+                        .label(m.label.as_str())
+                        .legend(move |(x, y)| TriangleMarker::new((x + 10, y), 4, color.stroke_width(1)));
+                } else {
+                    chart
+                        .draw_series(inside.map(|p| Circle::new(p, 3, color.stroke_width(1))))?
+                        .label(m.label.as_str())
+                        .legend(move |(x, y)| Circle::new((x + 10, y), 3, color.stroke_width(1)));
+                }
+            }
+            for l in &lines {
+                let color = l.color;
+                let pts = l.points.iter().map(|&(x, z)| (x.clamp(x0, x1), z));
+                chart
+                    .draw_series(LineSeries::new(pts, color.stroke_width(2)))?
+                    .label(l.label.as_str())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+            }
+            chart
+                .configure_series_labels()
+                .position(panel.legend.clone())
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .label_font(("sans-serif", 13))
+                .draw()?;
+        }};
+    }
+    if panel.log_x {
+        body!(builder.build_cartesian_2d((x0..x1).log_scale(), z0..z1)?);
+    } else {
+        body!(builder.build_cartesian_2d(x0..x1, z0..z1)?);
+    }
     Ok(())
 }

@@ -389,21 +389,200 @@ fn closure_plot_writes_png_and_csv_for_every_figure() {
 }
 
 #[test]
-fn run_refuses_cleanly_until_the_solvers_land() {
-    let err = assert_clean_failure(&saltus(&["run", "cases/chassagne2023/case01.toml"]));
-    assert!(err.contains("eulerian") && err.contains("not implemented"), "{err}");
+fn run_refuses_bad_scenes_cleanly() {
     let err = assert_clean_failure(&saltus(&["run", "does/not/exist.toml"]));
     assert!(err.contains("does/not/exist.toml"), "{err}");
-    let err = assert_clean_failure(
-        &check_scene("no_solver", "")
-            .status
-            .success()
-            .then(|| {
-                let d = tmp_dir("no_solver_run");
-                let p = write(&d, "scene.toml", BASE);
-                saltus(&["run", p.to_str().unwrap()])
-            })
-            .unwrap(),
-    );
+    let d = tmp_dir("no_solver_run");
+    let p = write(&d, "scene.toml", BASE);
+    let err = assert_clean_failure(&saltus(&["run", p.to_str().unwrap()]));
     assert!(err.contains("solver.type"), "{err}");
+    let p = write(&d, "lagrangian.toml", &format!("{BASE}[solver]\ntype = \"lagrangian\"\n"));
+    let err = assert_clean_failure(&saltus(&["run", p.to_str().unwrap()]));
+    assert!(err.contains("lagrangian") && err.contains("not implemented"), "{err}");
+}
+
+const CASE01: &str = "cases/chassagne2023/case01.toml";
+const COMPARE01: &str = "cases/chassagne2023/compare_case01_models.toml";
+
+fn assert_png(path: &Path) {
+    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"), "{} is not a PNG", path.display());
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn run_writes_outputs_and_the_profile_figure() {
+    let d = tmp_dir("run_case01");
+    let o = saltus(&["run", CASE01, "--set", "domain.cells=60", "--out", d.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for f in ["profiles.csv", "summary.json", "scene.toml", "manifest.json"] {
+        assert!(d.join(f).is_file(), "{f} missing");
+    }
+    let s = summary(&d);
+    let qs_star = s["qs_star"].as_f64().unwrap();
+    assert!(qs_star.is_finite() && qs_star > 0.0, "qs* = {qs_star}");
+    assert!(s["mass_error"].as_f64().unwrap().abs() < 1e-10, "{s}");
+    assert_eq!(s["cells"].as_u64(), Some(60));
+    let csv = std::fs::read_to_string(d.join("profiles.csv")).unwrap();
+    assert!(csv.starts_with("z,phi,") && csv.lines().count() == 61, "{}", &csv[..80]);
+    assert_png(&d.join("profiles.png"));
+    let out = stdout(&o);
+    assert!(out.contains("qs*") && out.contains(d.to_str().unwrap()), "{out}");
+    assert!(out.contains(d.join("profiles.png").to_str().unwrap()), "{out}");
+    // no progress bar when stderr is not a terminal
+    assert!(!stderr(&o).contains("residual"), "{}", stderr(&o));
+}
+
+#[test]
+fn run_with_a_missing_reference_file_warns_and_succeeds() {
+    let d = tmp_dir("run_missing_reference");
+    let o = saltus(&[
+        "run",
+        CASE01,
+        "--set",
+        "domain.cells=60",
+        "--set",
+        "reference.file=\"no_such_reference.txt\"",
+        "--out",
+        d.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(err.contains("warning") && err.contains("no_such_reference.txt"), "{err}");
+    assert!(err.contains("reference.file"), "{err}");
+    assert_png(&d.join("profiles.png"));
+}
+
+#[test]
+fn run_that_breaks_down_still_draws_its_last_good_state() {
+    // steps of 0.1 s with phi allowed to change by 1e-6 per step: every step is rejected
+    // until dt falls under dt_min
+    let d = tmp_dir("run_unstable");
+    let o = saltus(&[
+        "run",
+        CASE01,
+        "--set",
+        "domain.cells=60",
+        "--set",
+        "solver.max_phi_change=1e-6",
+        "--set",
+        "solver.dt_initial=0.1",
+        "--set",
+        "solver.dt_min=0.01",
+        "--out",
+        d.to_str().unwrap(),
+    ]);
+    let err = assert_clean_failure(&o);
+    assert!(err.contains("unstable"), "{err}");
+    assert_eq!(summary(&d)["ending"].as_str(), Some("unstable"));
+    assert_png(&d.join("profiles.png"));
+}
+
+/// Rows of a CSV as (header, records).
+fn read_table(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let mut r = csv::Reader::from_path(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let header = r.headers().unwrap().iter().map(str::to_string).collect();
+    let rows = r.records().map(|x| x.unwrap().iter().map(str::to_string).collect()).collect();
+    (header, rows)
+}
+
+fn cell<'a>(header: &[String], row: &'a [String], name: &str) -> &'a str {
+    &row[header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name}"))]
+}
+
+#[test]
+fn compare_runs_both_models_of_case01() {
+    let d = tmp_dir("compare_case01");
+    let o = saltus(&["compare", COMPARE01, "--out", d.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (header, rows) = read_table(&d.join("comparison.csv"));
+    let expected = [
+        "variant",
+        "qs_star",
+        "qs",
+        "shields",
+        "bed_height",
+        "transport_layer_thickness",
+        "steady",
+        "sim_time_s",
+        "steps",
+        "wall_time_s",
+        "mass_error",
+        "error",
+    ];
+    assert_eq!(header, expected);
+    assert_eq!(rows.len(), 2, "{rows:?}");
+    assert_eq!(cell(&header, &rows[0], "variant"), "initial (Garzo-Dufty)");
+    assert_eq!(cell(&header, &rows[1], "variant"), "proposed");
+    let qs: Vec<f64> = rows.iter().map(|r| cell(&header, r, "qs_star").parse().unwrap()).collect();
+    assert!(qs.iter().all(|q| q.is_finite() && *q > 0.0), "{qs:?}");
+    assert!((qs[0] - qs[1]).abs() > 1e-3 * qs[1], "the two models give the same qs*: {qs:?}");
+    assert!(rows.iter().all(|r| cell(&header, r, "error").is_empty()), "{rows:?}");
+    assert_png(&d.join("comparison.png"));
+    for v in ["initial-garzo-dufty", "proposed"] {
+        assert!(d.join(v).join("summary.json").is_file(), "{v}/summary.json missing");
+        assert_png(&d.join(v).join("profiles.png"));
+    }
+    // the proposed variant is case01 as it stands
+    let scene = std::fs::read_to_string(d.join("proposed/scene.toml")).unwrap();
+    assert!(scene.contains("jenkins_zhang"), "{scene}");
+    let out = stdout(&o);
+    assert!(out.contains("qs_star") && out.contains("initial (Garzo-Dufty)") && out.contains("proposed"), "{out}");
+}
+
+fn compare_file(dir: &Path, text: &str) -> PathBuf {
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join(CASE01);
+    write(dir, "cmp.toml", &format!("base = '{}'\n{text}", base.display()))
+}
+
+#[test]
+fn bad_compare_files_are_refused_naming_file_and_key() {
+    let d = tmp_dir("compare_bad");
+    let out = d.join("out");
+    let run = |p: &Path| saltus(&["compare", p.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let p = compare_file(&d, "[[variant]]\nname = \"a\"\nsett = []\n");
+    let err = assert_clean_failure(&run(&p));
+    assert!(err.contains("cmp.toml") && err.contains("sett"), "{err}");
+    let p = compare_file(&d, "[meta]\nname = \"x\"\ntitle = \"y\"\n[[variant]]\nname = \"a\"\n");
+    let err = assert_clean_failure(&run(&p));
+    assert!(err.contains("cmp.toml") && err.contains("meta") && err.contains("title"), "{err}");
+    let p = write(&d, "cmp.toml", "base = 'nowhere.toml'\n[[variant]]\nname = \"a\"\n");
+    let err = assert_clean_failure(&run(&p));
+    assert!(err.contains("cmp.toml") && err.contains("`base`") && err.contains("nowhere.toml"), "{err}");
+    let p = compare_file(&d, "[[variant]]\nname = = \"a\"\n");
+    let err = assert_clean_failure(&run(&p));
+    assert!(err.contains("cmp.toml:3:"), "{err}");
+    let p = compare_file(&d, "");
+    let err = assert_clean_failure(&run(&p));
+    assert!(err.contains("variant"), "{err}");
+    let p = compare_file(&d, "[[variant]]\nname = \"a b\"\n[[variant]]\nname = \"a-b\"\n");
+    let err = assert_clean_failure(&run(&p));
+    assert!(err.contains("variant[1].name"), "{err}");
+    assert!(!out.join("comparison.csv").exists(), "nothing runs on a bad compare file");
+}
+
+#[test]
+fn compare_reports_a_failing_variant_and_runs_the_others() {
+    let d = tmp_dir("compare_failing");
+    let p = compare_file(
+        &d,
+        "[[variant]]\nname = \"bad drag\"\nset = ['closures.drag={type=\"stoke\"}']\n\
+         [[variant]]\nname = \"coarse\"\nset = ['domain.cells=60']\n",
+    );
+    let out = d.join("out");
+    let o = saltus(&["compare", p.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let err = assert_clean_failure(&o);
+    assert!(err.contains("1 of 2 variants failed"), "{err}");
+    let (header, rows) = read_table(&out.join("comparison.csv"));
+    assert_eq!(rows.len(), 2);
+    let e = cell(&header, &rows[0], "error");
+    assert!(e.contains("closures.drag.type") && e.contains("stoke"), "{e}");
+    assert!(cell(&header, &rows[0], "qs_star").is_empty());
+    assert!(cell(&header, &rows[1], "error").is_empty(), "{rows:?}");
+    assert!(cell(&header, &rows[1], "qs_star").parse::<f64>().unwrap() > 0.0);
+    assert_png(&out.join("comparison.png"));
+    assert!(stdout(&o).contains("bad drag"), "{}", stdout(&o));
 }

@@ -1,0 +1,349 @@
+//! `saltus compare`: one base scene, several variants of it (each a list of `--set`
+//! overrides), run in parallel; one table of their summaries and one figure of their
+//! profiles over the base scene's reference data.
+//!
+//! ```toml
+//! base = "case01.toml"            # scene file, relative to this file
+//! [meta]
+//! name = "my_comparison"          # output folder out/<name> (default: this file's stem)
+//! description = "..."
+//! [[variant]]
+//! name = "stokes drag"            # table row, legend label, folder <DIR>/stokes-drag
+//! set = ['closures.drag={type="stokes"}']
+//! [[variant]]
+//! name = "as is"
+//! set = []
+//! ```
+
+use std::collections::HashSet;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget};
+use rayon::prelude::*;
+use saltus_core::scene::{de_path, parse_table, Meta, Scene};
+use saltus_core::Error;
+use saltus_solvers::RunReport;
+use serde::Deserialize;
+
+use crate::plot::{self, Reference, COMPARE_PANELS};
+use crate::runner;
+
+/// File names written in the output folder, next to one folder per variant.
+pub const TABLE: &str = "comparison.csv";
+/// See [`TABLE`].
+pub const FIGURE: &str = "comparison.png";
+
+/// Columns of the comparison table, after `variant` and before `error`.
+pub const COLUMNS: [&str; 10] = [
+    "qs_star",
+    "qs",
+    "shields",
+    "bed_height",
+    "transport_layer_thickness",
+    "steady",
+    "sim_time_s",
+    "steps",
+    "wall_time_s",
+    "mass_error",
+];
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    base: String,
+    #[serde(default)]
+    meta: Meta,
+    #[serde(default, rename = "variant")]
+    variants: Vec<Variant>,
+}
+
+/// One variant: the base scene with overrides.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Variant {
+    /// table row and legend label; its slug names the variant's output folder
+    pub name: String,
+    /// `KEY=VALUE` overrides, as `saltus run --set`
+    #[serde(default)]
+    pub set: Vec<String>,
+}
+
+/// A loaded and checked compare file.
+#[derive(Debug)]
+pub struct Comparison {
+    /// the compare file
+    pub file: PathBuf,
+    /// the base scene file (resolved against the compare file's folder)
+    pub base: PathBuf,
+    /// name (never empty: the file stem when not given) and description
+    pub meta: Meta,
+    /// variants, in file order, at least one
+    pub variants: Vec<Variant>,
+}
+
+/// Lower-case letters and digits of `name`, other runs of characters replaced by `-`.
+pub fn slug(name: &str) -> String {
+    let mut s = String::new();
+    for c in name.chars() {
+        if c.is_alphanumeric() {
+            s.extend(c.to_lowercase());
+        } else if !s.is_empty() && !s.ends_with('-') {
+            s.push('-');
+        }
+    }
+    s.trim_end_matches('-').to_string()
+}
+
+fn key_error(file: &Path, key: impl Into<String>, message: impl Into<String>) -> anyhow::Error {
+    Error::Key { file: file.to_path_buf(), key: key.into(), message: message.into() }.into()
+}
+
+/// Read and check a compare file: TOML syntax, keys, variant names, and the base scene
+/// (loaded once without overrides, so that a broken base fails before any run).
+pub fn load(path: &Path) -> anyhow::Result<Comparison> {
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Io { file: path.into(), source })?;
+    let table = parse_table(&text, path)?;
+    let raw: RawFile = de_path(toml::Value::Table(table), path, "")?;
+    if raw.variants.is_empty() {
+        return Err(key_error(path, "variant", "no [[variant]] table; give at least one, each with name and set"));
+    }
+    let mut names = HashSet::new();
+    let mut slugs = HashSet::new();
+    for (i, v) in raw.variants.iter().enumerate() {
+        let key = format!("variant[{i}].name");
+        let s = slug(&v.name);
+        if s.is_empty() {
+            return Err(key_error(path, key, format!("`{}`: a name needs at least one letter or digit", v.name)));
+        }
+        if !names.insert(v.name.as_str()) {
+            return Err(key_error(path, key, format!("`{}` is used by an earlier variant", v.name)));
+        }
+        if !slugs.insert(s.clone()) {
+            return Err(key_error(
+                path,
+                key,
+                format!("`{}` gives the same output folder `{s}` as an earlier variant", v.name),
+            ));
+        }
+    }
+    let base = path.parent().unwrap_or(Path::new("")).join(&raw.base);
+    if !base.is_file() {
+        return Err(key_error(path, "base", format!("`{}`: no such scene file ({})", raw.base, base.display())));
+    }
+    Scene::from_file(&base).map_err(|e| key_error(path, "base", format!("the base scene is invalid: {e}")))?;
+    let mut meta = raw.meta;
+    if meta.name.is_empty() {
+        meta.name = path.file_stem().map_or_else(|| "comparison".into(), |s| s.to_string_lossy().into_owned());
+    }
+    Ok(Comparison { file: path.to_path_buf(), base, meta, variants: raw.variants })
+}
+
+/// Output folder when `--out` is not given: `out/<meta.name>`.
+pub fn default_out(c: &Comparison) -> PathBuf {
+    PathBuf::from("out").join(&c.meta.name)
+}
+
+/// One variant's run.
+#[derive(Debug)]
+pub struct VariantRun {
+    /// variant name
+    pub name: String,
+    /// its output folder
+    pub dir: PathBuf,
+    /// summary and profiles (also of a run that broke down: its last good state)
+    pub report: Option<RunReport>,
+    /// why it failed (bad override, unstable run)
+    pub error: Option<String>,
+    /// warnings of the run
+    pub warnings: Vec<String>,
+}
+
+/// Everything a comparison produced.
+#[derive(Debug)]
+pub struct CompareReport {
+    /// output folder
+    pub out: PathBuf,
+    /// one per variant, in file order
+    pub runs: Vec<VariantRun>,
+    /// `comparison.csv`
+    pub table: PathBuf,
+    /// `comparison.png`, unless no variant left profiles or it could not be drawn
+    pub figure: Option<PathBuf>,
+    /// warnings of the runs and the figure, each once
+    pub warnings: Vec<String>,
+}
+
+impl CompareReport {
+    /// Number of variants that failed.
+    pub fn failures(&self) -> usize {
+        self.runs.iter().filter(|r| r.error.is_some()).count()
+    }
+
+    /// Header and one row of cells per variant (empty cells for a run without summary).
+    pub fn rows(&self, precise: bool) -> (Vec<String>, Vec<Vec<String>>) {
+        let mut header = vec!["variant".to_string()];
+        header.extend(COLUMNS.iter().map(|c| c.to_string()));
+        header.push("error".into());
+        let rows = self
+            .runs
+            .iter()
+            .map(|r| {
+                let mut row = vec![r.name.clone()];
+                match &r.report {
+                    Some(rep) => row.extend(summary_cells(&rep.summary, precise)),
+                    None => row.extend(COLUMNS.iter().map(|_| String::new())),
+                }
+                row.push(r.error.clone().unwrap_or_default());
+                row
+            })
+            .collect();
+        (header, rows)
+    }
+
+    /// The table as aligned text (numbers rounded, `-` for missing values).
+    pub fn text_table(&self) -> String {
+        let (header, rows) = self.rows(false);
+        let rows: Vec<Vec<String>> = rows
+            .into_iter()
+            .map(|r| r.into_iter().map(|c| if c.is_empty() { "-".into() } else { c }).collect())
+            .collect();
+        let n = header.len();
+        let width: Vec<usize> = (0..n)
+            .map(|k| rows.iter().map(|r| r[k].chars().count()).chain([header[k].len()]).max().unwrap_or(0))
+            .collect();
+        let mut s = String::new();
+        for row in std::iter::once(&header).chain(&rows) {
+            let mut line = String::new();
+            for (k, cell) in row.iter().enumerate() {
+                let pad = width[k] - cell.chars().count();
+                if k == 0 || k == n - 1 {
+                    // text columns: left-aligned, the last one unpadded
+                    line.push_str(cell);
+                    if k == 0 {
+                        line.push_str(&" ".repeat(pad));
+                    }
+                } else {
+                    line.push_str(&" ".repeat(pad));
+                    line.push_str(cell);
+                }
+                if k + 1 < n {
+                    line.push_str("  ");
+                }
+            }
+            let _ = writeln!(s, "{}", line.trim_end());
+        }
+        s
+    }
+}
+
+fn summary_cells(s: &saltus_solvers::Summary, precise: bool) -> Vec<String> {
+    if precise {
+        return vec![
+            format!("{:?}", s.qs_star),
+            format!("{:?}", s.qs),
+            format!("{:?}", s.shields),
+            format!("{:?}", s.bed_height),
+            format!("{:?}", s.transport_layer_thickness),
+            s.steady.to_string(),
+            format!("{:?}", s.sim_time_s),
+            s.steps.to_string(),
+            format!("{:?}", s.wall_time_s),
+            format!("{:?}", s.mass_error),
+        ];
+    }
+    vec![
+        format!("{:.4}", s.qs_star),
+        format!("{:.4e}", s.qs),
+        format!("{:.3}", s.shields),
+        format!("{:.4}", s.bed_height),
+        format!("{:.4}", s.transport_layer_thickness),
+        s.steady.to_string(),
+        format!("{:.2}", s.sim_time_s),
+        s.steps.to_string(),
+        format!("{:.3}", s.wall_time_s),
+        format!("{:.1e}", s.mass_error),
+    ]
+}
+
+/// Run every variant of `cmp` in parallel (one rayon task per variant), each into
+/// `out/<slug of its name>`, then write `out/comparison.csv` and `out/comparison.png`.
+/// A failing variant is recorded in its row; the others still run. With `progress`, one
+/// progress bar per running variant on stderr.
+pub fn run(cmp: &Comparison, out: &Path, progress: bool) -> anyhow::Result<CompareReport> {
+    std::fs::create_dir_all(out).with_context(|| format!("{}: cannot create", out.display()))?;
+    plot::register_font()?;
+    let bars =
+        if progress { MultiProgress::new() } else { MultiProgress::with_draw_target(ProgressDrawTarget::hidden()) };
+    let runs: Vec<VariantRun> =
+        cmp.variants.par_iter().with_max_len(1).map(|v| run_variant(cmp, v, out, &bars)).collect();
+
+    let mut warnings: Vec<String> = Vec::new();
+    for w in runs.iter().flat_map(|r| &r.warnings) {
+        if !warnings.contains(w) {
+            warnings.push(w.clone());
+        }
+    }
+    let mut report = CompareReport { out: out.to_path_buf(), runs, table: out.join(TABLE), figure: None, warnings };
+
+    let (header, rows) = report.rows(true);
+    let mut w =
+        csv::Writer::from_path(&report.table).with_context(|| format!("{}: cannot create", report.table.display()))?;
+    w.write_record(&header)?;
+    for r in &rows {
+        w.write_record(r)?;
+    }
+    w.flush().with_context(|| format!("{}: cannot write", report.table.display()))?;
+
+    let curves: Vec<(String, &saltus_solvers::Profiles)> = report
+        .runs
+        .iter()
+        .filter_map(|r| {
+            let rep = r.report.as_ref()?;
+            let label = if r.error.is_some() { format!("{} (failed)", r.name) } else { r.name.clone() };
+            Some((label, &rep.profiles))
+        })
+        .collect();
+    if !curves.is_empty() {
+        let png = out.join(FIGURE);
+        let base = Scene::from_file(&cmp.base).with_context(|| format!("{}: key `base`", cmp.file.display()))?;
+        let reference = match runner::load_reference(&base) {
+            Ok(r) => r,
+            Err(e) => {
+                let w = format!("{e:#}; {} drawn without reference data", png.display());
+                report.warnings.push(w);
+                None
+            }
+        };
+        let reference = reference.as_ref().map(|(label, table)| Reference { label, table });
+        match plot::draw_profiles(&cmp.meta.name, &COMPARE_PANELS, &curves, reference.as_ref(), &png) {
+            Ok(()) => report.figure = Some(png),
+            Err(e) => report.warnings.push(format!("{}: cannot draw: {e:#}", png.display())),
+        }
+    }
+    Ok(report)
+}
+
+fn run_variant(cmp: &Comparison, v: &Variant, out: &Path, bars: &MultiProgress) -> VariantRun {
+    let dir = out.join(slug(&v.name));
+    let mut run =
+        VariantRun { name: v.name.clone(), dir: dir.clone(), report: None, error: None, warnings: Vec::new() };
+    let mut scene = match Scene::from_file_with(&cmp.base, &v.set) {
+        Ok(s) => s,
+        Err(e) => {
+            run.error = Some(format!("{e}"));
+            return run;
+        }
+    };
+    // the variant's own name in its summary.json, scene.toml and figure title
+    scene.meta.name = format!("{} [{}]", scene.meta.name, v.name);
+    let bar = bars.add(ProgressBar::hidden());
+    runner::style_bar(&bar, &v.name);
+    let outcome = runner::run_scene(&scene, &dir, &bar);
+    bars.remove(&bar);
+    run.report = outcome.report;
+    run.error = outcome.error.map(|e| e.to_string());
+    run.warnings = outcome.warnings;
+    run
+}
