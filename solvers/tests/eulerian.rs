@@ -304,3 +304,24 @@ end_time = 30.0
         }
     }
 }
+
+/// All 19 cases of Chassagne et al. 2023 table 2 (cases/chassagne2023) reach steady state
+/// from the bed at rest without intervention, conserve the sediment mass and transport
+/// sediment; qs* per case is printed (`--nocapture`).
+#[test]
+fn all_chassagne_cases_reach_steady_state() {
+    saltus_closures::link();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/chassagne2023");
+    for k in 1..=19 {
+        let file = root.join(format!("case{k:02}.toml"));
+        let s = Scene::from_file(&file).expect("case");
+        let (m, ending) = run(&s);
+        let d = s.particles.diameter;
+        let scale = (s.submerged_ratio() * 9.81 * d * d * d).sqrt();
+        let qs: f64 = m.phi().iter().zip(m.u_p()).zip(m.dz()).map(|((p, u), h)| p * u * h).sum();
+        println!("case {k:2}: qs* = {:.4}, {} steps, t = {:.1} s", qs / scale, m.steps(), m.time());
+        assert_eq!(ending, Ending::Steady, "case {k}");
+        assert!(m.mass_error() < 1e-10, "case {k}: mass error {:e}", m.mass_error());
+        assert!(qs > 0.0, "case {k}: no transport");
+    }
+}
