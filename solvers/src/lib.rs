@@ -3,7 +3,7 @@
 //! Solvers of saltus. The entry point [`run`] dispatches on the scene's `[solver] type`:
 //! `eulerian` ([`eulerian`], the two-fluid column of Chassagne et al. 2023) runs;
 //! `lagrangian` (DEM coupled to the column) is refused with a clear message until it
-//! lands. [`column`] is the fluid column shared by both.
+//! lands. [`mod@column`] is the fluid column shared by both.
 
 // Errors carry file, key and message for the user; they are built once per failed run,
 // never in a hot loop, so their size does not matter.
