@@ -24,7 +24,8 @@ pub mod scene;
 pub use closure::drag::DragLaw;
 pub use closure::fluctuation::{FlowScales, Fluctuation, FluctuationDraw, ParticleSlip, TurbulencePoint};
 pub use closure::granular::{
-    GranularStress, KineticCoefficients, KineticTheory, LocalRheology, LocalState, SaltationInput,
+    GranularStress, JohnsonJacksonElastic, KineticCoefficients, KineticTheory, LocalRheology, LocalState,
+    SaltationInput,
 };
 pub use closure::hindrance::Hindrance;
 pub use closure::turbulence::{ColumnView, Turbulence};

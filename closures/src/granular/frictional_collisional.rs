@@ -162,6 +162,12 @@ impl FrictionalCollisional {
         }
     }
 
+    /// The Johnson-Jackson elastic pressure of this closure (eq 2.14).
+    #[inline]
+    pub fn elastic(&self) -> saltus_core::JohnsonJacksonElastic {
+        saltus_core::JohnsonJacksonElastic { p0: self.p0, phi_rlp: self.phi_rlp, phi_max: self.phi_max }
+    }
+
     /// Radial distribution at `phi` (phi < 0 evaluated as 0).
     #[inline]
     pub fn g0_at(&self, phi: f64) -> f64 {
@@ -260,29 +266,12 @@ impl KineticTheory for FrictionalCollisional {
 
     #[inline]
     fn elastic_pressure(&self, phi: f64) -> f64 {
-        if phi < self.phi_rlp {
-            0.0
-        } else if phi >= self.phi_max {
-            f64::INFINITY
-        } else {
-            let a = phi - self.phi_rlp;
-            let b = self.phi_max - phi;
-            self.p0 * a * a * a / b.powi(5)
-        }
+        self.elastic().pressure(phi)
     }
 
     #[inline]
     fn elastic_pressure_derivative(&self, phi: f64) -> f64 {
-        if phi < self.phi_rlp {
-            0.0
-        } else if phi >= self.phi_max {
-            f64::INFINITY
-        } else {
-            // P0 (phi-phi_rlp)^2 / (phi_max-phi)^6 [3 (phi_max-phi) + 5 (phi-phi_rlp)]
-            let a = phi - self.phi_rlp;
-            let b = self.phi_max - phi;
-            self.p0 * a * a * (3.0 * b + 5.0 * a) / b.powi(6)
-        }
+        self.elastic().derivative(phi)
     }
 
     fn static_friction(&self) -> f64 {

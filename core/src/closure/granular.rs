@@ -111,6 +111,48 @@ pub trait LocalRheology: Send + Sync {
     }
 }
 
+/// Johnson & Jackson (1987) enduring-contact (elastic) pressure, Chassagne et al. 2023
+/// eq 2.14: p_el = P0 (phi - phi_rlp)^3 / (phi_max - phi)^5 for phi >= phi_rlp, 0 below,
+/// +inf at or above phi_max. One definition for the kinetic closure and for the elastic
+/// part the Eulerian solver gives local rheologies.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JohnsonJacksonElastic {
+    /// P0 (Pa)
+    pub p0: f64,
+    /// random loose packing where the pressure starts
+    pub phi_rlp: f64,
+    /// packing where it diverges
+    pub phi_max: f64,
+}
+
+impl JohnsonJacksonElastic {
+    /// p_el(phi) (Pa)
+    #[inline]
+    pub fn pressure(&self, phi: f64) -> f64 {
+        if phi < self.phi_rlp {
+            0.0
+        } else if phi >= self.phi_max {
+            f64::INFINITY
+        } else {
+            let a = phi - self.phi_rlp;
+            self.p0 * a * a * a / (self.phi_max - phi).powi(5)
+        }
+    }
+    /// dp_el/dphi = P0 (phi-phi_rlp)^2 / (phi_max-phi)^6 [3 (phi_max-phi) + 5 (phi-phi_rlp)] (Pa)
+    #[inline]
+    pub fn derivative(&self, phi: f64) -> f64 {
+        if phi < self.phi_rlp {
+            0.0
+        } else if phi >= self.phi_max {
+            f64::INFINITY
+        } else {
+            let a = phi - self.phi_rlp;
+            let b = self.phi_max - phi;
+            self.p0 * a * a * (3.0 * b + 5.0 * a) / b.powi(6)
+        }
+    }
+}
+
 /// Dimensionless kinetic-theory coefficients at one volume fraction (Chassagne 2023 eqs
 /// 2.19-2.22 and table 1): p = rho_p F1 T, eta = rho_p d F2 sqrt(T),
 /// kappa = rho_p d F3 sqrt(T), Gamma = rho_p / d F4 T^{3/2}.

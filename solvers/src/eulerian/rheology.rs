@@ -4,44 +4,10 @@
 
 use saltus_core::{KineticTheory, LocalRheology, LocalState};
 
-/// Johnson & Jackson elastic pressure (Chassagne 2023 eq 2.14) for local rheologies, whose
-/// closures carry no enduring-contact pressure: without it a static bed (gamma_dot = 0)
-/// has no pressure at any phi below jamming.
-#[derive(Clone, Copy, Debug)]
-pub struct Elastic {
-    /// P0 (Pa)
-    pub p0: f64,
-    /// random loose packing
-    pub phi_rlp: f64,
-    /// divergence at phi_max
-    pub phi_max: f64,
-}
-
-impl Elastic {
-    /// p_el(phi)
-    pub fn pressure(&self, phi: f64) -> f64 {
-        if phi < self.phi_rlp {
-            0.0
-        } else if phi >= self.phi_max {
-            f64::INFINITY
-        } else {
-            let a = phi - self.phi_rlp;
-            self.p0 * a * a * a / (self.phi_max - phi).powi(5)
-        }
-    }
-    /// dp_el / dphi
-    pub fn derivative(&self, phi: f64) -> f64 {
-        if phi < self.phi_rlp {
-            0.0
-        } else if phi >= self.phi_max {
-            f64::INFINITY
-        } else {
-            let a = phi - self.phi_rlp;
-            let b = self.phi_max - phi;
-            self.p0 * a * a * (3.0 * b + 5.0 * a) / b.powi(6)
-        }
-    }
-}
+/// Johnson & Jackson elastic pressure (Chassagne 2023 eq 2.14) given to local
+/// rheologies, whose closures carry no enduring-contact pressure: without it a static bed
+/// (gamma_dot = 0) has no pressure at any phi below jamming.
+pub type Elastic = saltus_core::JohnsonJacksonElastic;
 
 /// Which granular closure the run uses.
 #[derive(Clone, Copy)]
