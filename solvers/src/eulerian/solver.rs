@@ -135,7 +135,9 @@ pub struct Eulerian<'a> {
     mass0: f64,
     residual: f64,
     // saved state for rejection
-    saved: [Vec<f64>; 6],
+    saved: [Vec<f64>; 5],
+    /// face coefficients (c_L, c_R, s) of the volume-fraction fluxes, reused every step
+    face_coeffs: Vec<f64>,
     // coefficients
     gamma_f: Vec<f64>,
     gamma_p: Vec<f64>,
@@ -299,6 +301,7 @@ impl<'a> Eulerian<'a> {
             mass0,
             residual: f64::INFINITY,
             saved: Default::default(),
+            face_coeffs: Vec::with_capacity(3 * (n + 1)),
             gamma_f: v(0.0),
             gamma_p: v(0.0),
             face_gamma: vec![0.0; n + 1],
@@ -573,7 +576,6 @@ impl<'a> Eulerian<'a> {
                     let phi = self.phi[i].max(0.0);
                     let t = self.temp[i].max(0.0);
                     let st = t.sqrt();
-                    let co_st = st;
                     let input =
                         SaltationInput { sqrt_t: st, k_drag: self.k_drag[i], particle_density: c.rho_p, diameter: c.d };
                     let co = kt.coefficients(phi, if salt { Some(&input) } else { None });
@@ -582,15 +584,14 @@ impl<'a> Eulerian<'a> {
                     // and >= phi, so the slope is >= F1/phi, the dilute limit 1)
                     let h = 1e-7;
                     let f1p = if phi + h < kt.phi_max() {
-                        (kt.coefficients(phi + h, None).f1 - kt.coefficients(phi, None).f1) / h
+                        (kt.coefficients(phi + h, None).f1 - co.f1) / h
                     } else {
                         co.f1 / phi.max(1e-12)
                     };
                     self.f1_slope[i] = f1p.max(0.0);
                     self.pres[i] = self.kinetic_pressure(kt, i, t);
-                    let _ = st;
-                    self.eta_kin[i] = c.rho_p * c.d * co.f2 * co_st;
-                    self.kappa[i] = c.rho_p * c.d * co.f3 * co_st;
+                    self.eta_kin[i] = c.rho_p * c.d * co.f2 * st;
+                    self.kappa[i] = c.rho_p * c.d * co.f3 * st;
                 }
                 let mu_s = kt.static_friction();
                 for j in 0..=n {
@@ -772,7 +773,7 @@ impl<'a> Eulerian<'a> {
         let n = self.len();
         let gw = self.c.buoyant_weight;
         // face coefficients: F_j = cl phi_L + cr phi_R + s
-        let mut coeffs = std::mem::take(&mut self.saved[5]);
+        let mut coeffs = std::mem::take(&mut self.face_coeffs);
         coeffs.clear();
         coeffs.resize(3 * (n + 1), 0.0);
         for j in 1..n {
@@ -818,7 +819,7 @@ impl<'a> Eulerian<'a> {
             t.rhs[i] = f_dn - f_up;
         }
         if let Err(row) = t.solve(&mut self.work) {
-            self.saved[5] = coeffs;
+            self.face_coeffs = coeffs;
             return Err(self.breakdown(row, "phi", f64::NAN, "singular volume-fraction system".into()));
         }
         // fluxes of the implicit solution, then phi rebuilt from them in flux form: the
@@ -850,12 +851,12 @@ impl<'a> Eulerian<'a> {
                 None
             };
             if let Some(reason) = bad {
-                self.saved[5] = coeffs;
+                self.face_coeffs = coeffs;
                 return Err(self.breakdown(i, "phi", v, reason.into()));
             }
         }
         self.phi.copy_from_slice(&self.work);
-        self.saved[5] = coeffs;
+        self.face_coeffs = coeffs;
         Ok(())
     }
 
@@ -864,7 +865,7 @@ impl<'a> Eulerian<'a> {
     }
 
     fn save(&mut self) {
-        let [a, b, c, d, e, _] = &mut self.saved;
+        let [a, b, c, d, e] = &mut self.saved;
         for (dst, src) in [(a, &self.phi), (b, &self.uf), (c, &self.up), (d, &self.temp), (e, &self.flux)] {
             dst.clear();
             dst.extend_from_slice(src);
@@ -872,7 +873,7 @@ impl<'a> Eulerian<'a> {
     }
 
     fn restore(&mut self) {
-        let [a, b, c, d, e, _] = &self.saved;
+        let [a, b, c, d, e] = &self.saved;
         self.phi.copy_from_slice(a);
         self.uf.copy_from_slice(b);
         self.up.copy_from_slice(c);
@@ -902,7 +903,7 @@ impl<'a> Eulerian<'a> {
     /// the vanishing particles of the clear-fluid region, which carry nothing, do not hold
     /// the run away from steady state.
     fn rates(&self, dt: f64) -> (f64, f64) {
-        let [phi0, uf0, up0, t0, _, _] = &self.saved;
+        let [phi0, uf0, up0, t0, _] = &self.saved;
         let n = self.len();
         let mut du: f64 = 0.0;
         let mut dq: f64 = 0.0;
