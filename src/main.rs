@@ -101,6 +101,28 @@ enum ClosureCommand {
     },
 }
 
+/// `print!` that treats a closed stdout (`saltus run ... | head`) as the end of the output
+/// instead of panicking: the outputs are already on disk by then.
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        if let Err(e) = write!(std::io::stdout(), $($arg)*) {
+            if e.kind() == std::io::ErrorKind::BrokenPipe {
+                return Ok(());
+            }
+            return Err(e.into());
+        }
+    }};
+}
+
+/// `println!` counterpart of [`out!`].
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        out!($($arg)*);
+        out!("\n");
+    }};
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
@@ -127,15 +149,15 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Models { family, json } => {
             let family = family.as_deref().map(parse_family).transpose()?;
             if json {
-                println!("{}", serde_json::to_string_pretty(&saltus::listing::json(family))?);
+                outln!("{}", serde_json::to_string_pretty(&saltus::listing::json(family))?);
             } else {
-                print!("{}", saltus::listing::text(family));
+                out!("{}", saltus::listing::text(family));
             }
         }
         Command::Check { scene, set } => {
             let s = Scene::from_file_with(&scene, &set)?;
-            println!("# {} resolved: every default filled in, ranges and closure needs checked", scene.display());
-            print!("{}", s.to_toml()?);
+            outln!("# {} resolved: every default filled in, ranges and closure needs checked", scene.display());
+            out!("{}", s.to_toml()?);
         }
         Command::Run { scene, set, out } => {
             let s = Scene::from_file_with(&scene, &set)?;
@@ -152,11 +174,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 });
             }
             if let Some(report) = &outcome.report {
-                println!("{report}");
+                outln!("{report}");
             }
-            println!("outputs: {}", out.display());
+            outln!("outputs: {}", out.display());
             if let Some(png) = &outcome.figure {
-                println!("figure:  {}", png.display());
+                outln!("figure:  {}", png.display());
             }
         }
         Command::Compare { file, out } => {
@@ -166,11 +188,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             for w in &report.warnings {
                 eprintln!("warning: {w}");
             }
-            print!("{}", report.text_table());
-            println!("outputs: {}", out.display());
-            println!("table:   {}", report.table.display());
+            out!("{}", report.text_table());
+            outln!("outputs: {}", out.display());
+            outln!("table:   {}", report.table.display());
             if let Some(png) = &report.figure {
-                println!("figure:  {}", png.display());
+                outln!("figure:  {}", png.display());
             }
             let failed = report.failures();
             if failed > 0 {
@@ -199,9 +221,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 let stem = file.file_stem().map_or_else(|| "closures".into(), |s| s.to_string_lossy().into_owned());
                 let out = out.unwrap_or_else(|| PathBuf::from("out/closures").join(stem));
                 let written = saltus::plot::run(&file, &out)?;
-                println!("{}: {} figures written to {}", file.display(), written.len() / 2, out.display());
+                outln!("{}: {} figures written to {}", file.display(), written.len() / 2, out.display());
                 for w in written {
-                    println!("  {}", w.display());
+                    outln!("  {}", w.display());
                 }
             }
         },

@@ -145,6 +145,51 @@ dt_max = 2e-3
     assert!(m.mass_error() < 1e-12, "mass error {:e}", m.mass_error());
 }
 
+/// Benchmark 6: dense mu(I) layer of H = 20 d under air on an incline
+/// (`cases/verification/dry_mu_i_incline.toml`): the Bagnold profile
+/// u(z) = (2 I / (3 d)) sqrt(phi g cos) [H^1.5 - (H - z)^1.5] with I from mu(I) = tan(alpha).
+/// Returns the largest deviation over the layer relative to the surface velocity.
+fn dry_incline_error(cells: usize) -> f64 {
+    saltus_closures::link();
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/verification/dry_mu_i_incline.toml");
+    let s = Scene::from_file_with(&file, &[format!("domain.cells={cells}")]).expect("scene");
+    let (m, _) = run(&s);
+    let (tan_a, mu_s, mu_2, i0, phi_c, b) = (0.55f64, 0.35, 0.97, 0.69, 0.61, 0.31);
+    let i = i0 * (tan_a - mu_s) / (mu_2 - tan_a);
+    let phi = phi_c / (1.0 + b * i);
+    let cos_a = 1.0 / (1.0 + tan_a * tan_a).sqrt();
+    let (h, d) = (0.02f64, 1e-3f64);
+    let u = |z: f64| 2.0 * i / (3.0 * d) * (phi * 9.81 * cos_a).sqrt() * (h.powf(1.5) - (h - z).powf(1.5));
+    let worst =
+        m.z().iter().zip(m.u_p()).filter(|(&z, _)| z < h).map(|(&z, &up)| (up - u(z)).abs()).fold(0.0, f64::max);
+    assert!(m.mass_error() < 1e-10, "mass error {:e}", m.mass_error());
+    worst / u(h)
+}
+
+/// The Bagnold profile within 5 % at 100 cells across the layer, and the error falls with
+/// the cell size. Measured: 6.4 % (50 cells across the layer), 3.6 % (100), 2.2 % (200):
+/// first order, from the free surface of the layer, smeared over two cells where the
+/// dilute grains above it shear fast (docs/eulerian.md, known limits).
+#[test]
+fn dry_mu_i_incline_bagnold_profile() {
+    let (coarse, fine) = (dry_incline_error(63), dry_incline_error(125));
+    println!(
+        "dry mu(I) incline: max error / u_surface {:.2} % (50 cells across H), {:.2} % (100)",
+        100.0 * coarse,
+        100.0 * fine
+    );
+    assert!(fine < 0.05, "error {:.2} % at 100 cells", 100.0 * fine);
+    assert!(fine < 0.75 * coarse, "no convergence: {coarse} -> {fine}");
+}
+
+/// VERIFICATION.md benchmark 6 asks for 1 % at 100 cells: not met yet (3.6 %).
+#[test]
+#[ignore = "benchmark 6 tolerance (1 %) not met: first-order error at the layer surface"]
+fn dry_mu_i_incline_within_1_percent() {
+    let e = dry_incline_error(125);
+    assert!(e < 0.01, "error {:.2} % at 100 cells", 100.0 * e);
+}
+
 /// Chassagne et al. 2023 reference case (table 2 case 1, proposed model) against the
 /// coupled fluid-DEM profile in `../shared/data/chassagne_dem_bedload_sedfoam` (this test
 /// reads that file): steady state reached, sediment mass conserved to 1e-10, RMS
@@ -195,25 +240,16 @@ fn chassagne_case01_against_dem(tolerance: f64) {
     assert!(err < tolerance, "qs* = {ours}, DEM {dem}: error {:.1} % > {:.0} %", 100.0 * err, 100.0 * tolerance);
 }
 
-/// Regression guard: the grid-converged two-fluid model under-predicts the DEM transport
-/// of case 1 by about 25 % (qs* 1.74 against 2.34, docs/benchmarks.md); it must not drift
-/// further.
+/// The paper's target (figure 9a): the proposed model within 15 % of the DEM transport
+/// rate of case 1.
 #[test]
-fn chassagne_case01_against_dem_within_30_percent() {
-    chassagne_case01_against_dem(0.30);
-}
-
-/// The paper's target (figure 9a): within 15 % of the DEM. Not met yet (about -25 %), kept
-/// as an ignored test so that the gap stays visible: `cargo test -- --ignored`.
-#[test]
-#[ignore = "target of issue 3 not met yet: qs* is 25 % below the DEM value"]
 fn chassagne_case01_against_dem_within_15_percent() {
     chassagne_case01_against_dem(0.15);
 }
 
 /// The initial (Garzo-Dufty) model of Chassagne et al. 2023 overpredicts the transport of
 /// case 1 by far (paper: error over 50 %); the friction and saltation corrections are what
-/// bring it within 15 %.
+/// bring it within 15 %. Same scene as the proposed model except the granular table.
 #[test]
 fn chassagne_case01_initial_model_error_is_large() {
     saltus_closures::link();
@@ -227,7 +263,7 @@ fn chassagne_case01_initial_model_error_is_large() {
     let qs: f64 = m.phi().iter().zip(m.u_p()).zip(m.dz()).map(|((p, u), h)| p * u * h).sum();
     let err = (qs / scale - 2.337).abs() / 2.337;
     println!("case 1, initial model: qs* = {:.4}, error {:.1} % against the DEM 2.337", qs / scale, 100.0 * err);
-    assert!(err > 0.3, "initial model error {:.1} % should be large", 100.0 * err);
+    assert!(err > 0.5, "initial model error {:.1} % should be large", 100.0 * err);
 }
 
 mod stress {
@@ -307,11 +343,13 @@ end_time = 30.0
 
 /// All 19 cases of Chassagne et al. 2023 table 2 (cases/chassagne2023) reach steady state
 /// from the bed at rest without intervention, conserve the sediment mass and transport
-/// sediment; qs* per case is printed (`--nocapture`).
+/// sediment; qs* per case is printed (`--nocapture`). Cases 1-5 differ only in the
+/// Shields number (table 2): transport must grow with it.
 #[test]
 fn all_chassagne_cases_reach_steady_state() {
     saltus_closures::link();
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/chassagne2023");
+    let mut by_theta = Vec::new();
     for k in 1..=19 {
         let file = root.join(format!("case{k:02}.toml"));
         let s = Scene::from_file(&file).expect("case");
@@ -323,5 +361,11 @@ fn all_chassagne_cases_reach_steady_state() {
         assert_eq!(ending, Ending::Steady, "case {k}");
         assert!(m.mass_error() < 1e-10, "case {k}: mass error {:e}", m.mass_error());
         assert!(qs > 0.0, "case {k}: no transport");
+        if k <= 5 {
+            let theta = m.config().domain.water_depth * s.physics.slope / (s.submerged_ratio() * d);
+            by_theta.push((theta, qs / scale));
+        }
     }
+    by_theta.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert!(by_theta.windows(2).all(|w| w[1].1 > w[0].1), "qs* must grow with theta: {by_theta:?}");
 }
