@@ -313,11 +313,11 @@ pub fn run(cmp: &Comparison, out: &Path, progress: bool) -> anyhow::Result<Compa
             Err(e) => {
                 let w = format!("{e:#}; {} drawn without reference data", png.display());
                 report.warnings.push(w);
-                None
+                Vec::new()
             }
         };
-        let reference = reference.as_ref().map(|(label, table)| Reference { label, table });
-        match plot::draw_profiles(&cmp.meta.name, &COMPARE_PANELS, &curves, reference.as_ref(), &png) {
+        let reference: Vec<Reference> = reference.iter().map(|(label, table)| Reference { label, table }).collect();
+        match plot::draw_profiles(&cmp.meta.name, &COMPARE_PANELS, &curves, &reference, &png) {
             Ok(()) => report.figure = Some(png),
             Err(e) => report.warnings.push(format!("{}: cannot draw: {e:#}", png.display())),
         }

@@ -413,7 +413,7 @@ pub fn draw_profiles(
     title: &str,
     panels: &[Panel],
     curves: &[(String, &Profiles)],
-    reference: Option<&Reference>,
+    references: &[Reference],
     png: &Path,
 ) -> anyhow::Result<()> {
     register_font()?;
@@ -437,7 +437,7 @@ pub fn draw_profiles(
     root.fill(&WHITE)?;
     let root = root.titled(title, ("sans-serif", 22))?;
     for (panel, area) in shown.iter().zip(root.split_evenly((1, shown.len()))) {
-        draw_panel(&area, panel, curves, reference, (z0, z1))?;
+        draw_panel(&area, panel, curves, references, (z0, z1))?;
     }
     root.present()?;
     Ok(())
@@ -447,7 +447,7 @@ fn draw_panel(
     area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
     panel: &Panel,
     curves: &[(String, &Profiles)],
-    reference: Option<&Reference>,
+    references: &[Reference],
     (z0, z1): (f64, f64),
 ) -> anyhow::Result<()> {
     let ncols = panel.columns.len();
@@ -467,7 +467,7 @@ fn draw_panel(
         }
     }
     let mut marks = Vec::new();
-    if let Some(r) = reference {
+    for (ri, r) in references.iter().enumerate() {
         for (ki, &col) in panel.columns.iter().enumerate() {
             let all = points(r.table, col, panel.log_x);
             if all.is_empty() {
@@ -477,7 +477,7 @@ fn draw_panel(
             let pts: Vec<_> = all.into_iter().step_by(stride).filter(|p| p.1 >= z0 && p.1 <= z1).collect();
             let label = if ncols == 1 { r.label.to_string() } else { format!("{} {col}", r.label) };
             let color = if curves.len() == 1 { COLORS[ki % COLORS.len()] } else { BLACK };
-            marks.push(Marks { label, color, triangle: ki > 0, points: pts });
+            marks.push(Marks { label, color, triangle: (ri + ki) % 2 == 1, points: pts });
         }
     }
     let xs = lines.iter().flat_map(|l| &l.points).chain(marks.iter().flat_map(|m| &m.points)).map(|p| p.0);

@@ -100,7 +100,7 @@ fn draw_run(scene: &Scene, r: &RunReport, failed: bool, png: &Path, warnings: &m
         Ok(r) => r,
         Err(e) => {
             warnings.push(format!("{e:#}; {} drawn without reference data", png.display()));
-            None
+            Vec::new()
         }
     };
     let s = &r.summary;
@@ -110,8 +110,8 @@ fn draw_run(scene: &Scene, r: &RunReport, failed: bool, png: &Path, warnings: &m
     } else {
         format!("{name}: {} at t = {:.1} s, qs* = {:.3}, Shields {:.3}", s.ending, s.sim_time_s, s.qs_star, s.shields)
     };
-    let reference = reference.as_ref().map(|(label, table)| Reference { label, table });
-    plot::draw_profiles(&title, &RUN_PANELS, &[(name.to_string(), &r.profiles)], reference.as_ref(), png)
+    let reference: Vec<Reference> = reference.iter().map(|(label, table)| Reference { label, table }).collect();
+    plot::draw_profiles(&title, &RUN_PANELS, &[(name.to_string(), &r.profiles)], &reference, png)
 }
 
 /// After a failed run: the summary and profiles the solver wrote into `out` during this
@@ -179,19 +179,31 @@ pub fn read_profiles(path: &Path) -> anyhow::Result<Profiles> {
     Ok(p)
 }
 
-/// The scene's `[reference]` data: a legend label (the file stem) and its columns, or
-/// `None` when the scene has no `[reference]`. Errors name the scene, the key and the
-/// resolved file.
-pub fn load_reference(scene: &Scene) -> anyhow::Result<Option<(String, Table)>> {
-    let Some(r) = &scene.reference else {
-        return Ok(None);
-    };
+/// The scene's reference data (`[reference]` or `[[reference]]`): per file a legend label
+/// (the file stem) and its columns, `z` shifted by the entry's `z_offset`; empty when the
+/// scene has none. Errors name the scene, the key and the resolved file.
+pub fn load_reference(scene: &Scene) -> anyhow::Result<Vec<(String, Table)>> {
     let dir = scene.path.parent().unwrap_or(Path::new(""));
-    let file = dir.join(&r.file);
-    let table =
-        read_columns(&file, &r.columns).with_context(|| format!("{}: key `reference.file`", scene.path.display()))?;
-    let label = file.file_stem().map_or_else(|| "reference".into(), |n| n.to_string_lossy().into_owned());
-    Ok(Some((label, table)))
+    let many = scene.reference.len() > 1;
+    let mut out = Vec::with_capacity(scene.reference.len());
+    for (i, r) in scene.reference.iter().enumerate() {
+        let key = if many { format!("reference[{i}]") } else { "reference".into() };
+        let file = dir.join(&r.file);
+        let mut table =
+            read_columns(&file, &r.columns).with_context(|| format!("{}: key `{key}.file`", scene.path.display()))?;
+        if r.z_offset != 0.0 {
+            if !r.z_offset.is_finite() {
+                bail!("{}: key `{key}.z_offset` = {}: must be a finite length in m", scene.path.display(), r.z_offset);
+            }
+            match table.column_mut("z") {
+                Some(z) => z.iter_mut().for_each(|z| *z += r.z_offset),
+                None => bail!("{}: key `{key}.z_offset`: the file has no `z` column to shift", scene.path.display()),
+            }
+        }
+        let label = file.file_stem().map_or_else(|| "reference".into(), |n| n.to_string_lossy().into_owned());
+        out.push((label, table));
+    }
+    Ok(out)
 }
 
 /// Read a file of numeric columns separated by whitespace or commas, `#` comment lines

@@ -25,6 +25,11 @@ impl Table {
         self.names.iter().position(|n| n == name).map(|i| self.columns[i].as_slice())
     }
 
+    /// Column by name, mutable.
+    pub fn column_mut(&mut self, name: &str) -> Option<&mut Vec<f64>> {
+        self.names.iter().position(|n| n == name).map(|i| &mut self.columns[i])
+    }
+
     /// Append a column (must have `rows()` entries unless the table is empty).
     pub fn push(&mut self, name: impl Into<String>, values: Vec<f64>) {
         self.names.push(name.into());

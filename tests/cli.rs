@@ -586,3 +586,28 @@ fn compare_reports_a_failing_variant_and_runs_the_others() {
     assert_png(&out.join("comparison.png"));
     assert!(stdout(&o).contains("bad drag"), "{}", stdout(&o));
 }
+
+#[test]
+fn several_reference_files_with_a_z_offset() {
+    let d = tmp_dir("reference_array");
+    write(&d, "a.txt", "# z phi\n0.0 0.5\n0.01 0.4\n");
+    write(&d, "b.txt", "0.0, 1.0\n0.02, 2.0\n");
+    let extra = "[[reference]]\nfile = \"a.txt\"\ncolumns = [\"z\", \"phi\"]\nz_offset = 0.04\n\
+                 [[reference]]\nfile = \"b.txt\"\ncolumns = [\"z\", \"u_p\"]\n";
+    let p = write(&d, "scene.toml", &format!("{BASE}{extra}"));
+    let o = saltus(&["check", p.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("z_offset = 0.04"), "{}", stdout(&o));
+    saltus_closures::link();
+    let scene = saltus_core::scene::Scene::from_file(&p).expect("scene");
+    let refs = saltus::runner::load_reference(&scene).expect("reference data");
+    assert_eq!(refs.len(), 2);
+    assert_eq!(refs[0].1.get("z"), Some(&[0.04, 0.05][..]), "z shifted by z_offset");
+    assert_eq!(refs[1].1.get("u_p"), Some(&[1.0, 2.0][..]));
+    // a mistake in the second table names its index and the key
+    let bad = "[[reference]]\nfile = \"a.txt\"\ncolumns = [\"z\", \"phi\"]\n\
+               [[reference]]\nfile = \"b.txt\"\ncolumns = [\"z\", \"u_p\"]\nz_ofset = 1.0\n";
+    let p = write(&d, "bad.toml", &format!("{BASE}{bad}"));
+    let err = assert_clean_failure(&saltus(&["check", p.to_str().unwrap()]));
+    assert!(err.contains("reference[1]") && err.contains("z_ofset") && err.contains("z_offset"), "{err}");
+}

@@ -99,7 +99,8 @@ pub struct Output {
     pub dir: Option<String>,
 }
 
-/// Reference data overlaid on the run's plots.
+/// Reference data overlaid on the run's plots: `[reference]` for one file, or
+/// `[[reference]]` for several (a velocity file and a concentration file, say).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Reference {
@@ -107,6 +108,35 @@ pub struct Reference {
     pub file: String,
     /// column names of the file, in order
     pub columns: Vec<String>,
+    /// added to the file's `z` column (m), for data measured from another origin (from the
+    /// bed surface instead of the bottom of the column, say)
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub z_offset: f64,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
+}
+
+/// `[reference]` (one table) or `[[reference]]` (an array of tables). Each table is read
+/// on its own so that a mistake is reported with its key and index, not as "no variant
+/// matched".
+fn one_or_many<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Vec<Reference>, D::Error> {
+    use serde::de::Error as _;
+    let one = |v: toml::Value, key: String| {
+        Reference::deserialize(v).map_err(|e| D::Error::custom(format!("{key}: {}", e.message())))
+    };
+    match Option::<toml::Value>::deserialize(d)? {
+        None => Ok(Vec::new()),
+        Some(v @ toml::Value::Table(_)) => Ok(vec![one(v, "reference".into())?]),
+        Some(toml::Value::Array(items)) => {
+            items.into_iter().enumerate().map(|(i, v)| one(v, format!("reference[{i}]"))).collect()
+        }
+        Some(other) => Err(D::Error::custom(format!(
+            "reference: expected a table ([reference]) or an array of tables ([[reference]]), found {}",
+            other.type_str()
+        ))),
+    }
 }
 
 /// The closures of a scene, one per family. Absent families take their defaults when the
@@ -160,9 +190,9 @@ pub struct Scene {
     pub closures: Closures,
     /// output
     pub output: Output,
-    /// reference data
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub reference: Option<Reference>,
+    /// reference data, in the order of the scene file
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub reference: Vec<Reference>,
     /// file the scene was read from (for messages and relative paths)
     #[serde(skip)]
     pub path: PathBuf,
@@ -186,8 +216,8 @@ struct Base {
     solver: Option<toml::Table>,
     #[serde(default)]
     output: Output,
-    #[serde(default)]
-    reference: Option<Reference>,
+    #[serde(default, deserialize_with = "one_or_many")]
+    reference: Vec<Reference>,
 }
 
 /// Serialise any value (a closure trait object included) to a TOML string.
