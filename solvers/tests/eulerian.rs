@@ -343,13 +343,19 @@ end_time = 30.0
 
 /// All 19 cases of Chassagne et al. 2023 table 2 (cases/chassagne2023) reach steady state
 /// from the bed at rest without intervention, conserve the sediment mass and transport
-/// sediment; qs* per case is printed (`--nocapture`). Cases 1-5 differ only in the
-/// Shields number (table 2): transport must grow with it.
+/// sediment; qs* per case is printed (`--nocapture`). Against the paper's findings
+/// (section 4.2, figures 8-10): cases 1-5 differ only in the Shields number and transport
+/// grows with it; for frictional grains (mu_p >= 0.4: cases 1, 12-14) and for
+/// restitution e <= 0.7 at mu_p = 0.4 (cases 1, 15, 16; the dissipation "is the same for
+/// e <= 0.7", figure 10) the transport no longer depends on the microscopic properties
+/// (within 10 % here); frictionless grains (case 9) move far more (over twice). Case 17
+/// (e = 0.9) is printed, not gated: the model gives about 18 % more than case 1.
 #[test]
 fn all_chassagne_cases_reach_steady_state() {
     saltus_closures::link();
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/chassagne2023");
     let mut by_theta = Vec::new();
+    let mut qs_star = vec![0.0; 20];
     for k in 1..=19 {
         let file = root.join(format!("case{k:02}.toml"));
         let s = Scene::from_file(&file).expect("case");
@@ -361,6 +367,7 @@ fn all_chassagne_cases_reach_steady_state() {
         assert_eq!(ending, Ending::Steady, "case {k}");
         assert!(m.mass_error() < 1e-10, "case {k}: mass error {:e}", m.mass_error());
         assert!(qs > 0.0, "case {k}: no transport");
+        qs_star[k] = qs / scale;
         if k <= 5 {
             let theta = m.config().domain.water_depth * s.physics.slope / (s.submerged_ratio() * d);
             by_theta.push((theta, qs / scale));
@@ -368,4 +375,13 @@ fn all_chassagne_cases_reach_steady_state() {
     }
     by_theta.sort_by(|a, b| a.0.total_cmp(&b.0));
     assert!(by_theta.windows(2).all(|w| w[1].1 > w[0].1), "qs* must grow with theta: {by_theta:?}");
+    let spread = |ks: &[usize]| {
+        let v: Vec<f64> = ks.iter().map(|&k| qs_star[k]).collect();
+        let (lo, hi) = v.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+        (hi - lo) / lo
+    };
+    assert!(spread(&[1, 12, 13, 14]) < 0.1, "mu_p >= 0.4: spread {:.3}", spread(&[1, 12, 13, 14]));
+    assert!(spread(&[1, 15, 16]) < 0.1, "e = 0.3-0.7: spread {:.3}", spread(&[1, 15, 16]));
+    println!("e = 0.9 (case 17) against e = 0.7 (case 1): qs* ratio {:.3}", qs_star[17] / qs_star[1]);
+    assert!(qs_star[9] > 2.0 * qs_star[1], "frictionless grains: {} vs {}", qs_star[9], qs_star[1]);
 }
