@@ -106,13 +106,16 @@ fn channel_re590_against_dns() {
     let centre_err = (u_centre - centre_dns).abs() / centre_dns;
     let rs = rows(&root().join("../shared/data/mkm1999_chan590/chan590.reystress")).expect("reystress");
     let (dns_i, dns_k) =
-        rs.iter().map(|r| 0.5 * (r[2] + r[3] + r[4])).enumerate().fold((0, 0.0f64), |a, (i, v)| {
-            if v > a.1 {
-                (i, v)
-            } else {
-                a
-            }
-        });
+        rs.iter().map(|r| 0.5 * (r[2] + r[3] + r[4])).enumerate().fold(
+            (0, 0.0f64),
+            |a, (i, v)| {
+                if v > a.1 {
+                    (i, v)
+                } else {
+                    a
+                }
+            },
+        );
     println!(
         "channel Re_tau = 587.19: {} steps, {:.2} s wall; U+ max error {:.2} % (at y+ = {worst_u_at:.1}) for 30 <= y+ <= 176; \
          centreline U+ {u_centre:.3} vs DNS {centre_dns:.3} ({:.2} %); total stress max deviation {worst_stress:.2e} u*^2; \
@@ -203,5 +206,56 @@ fn channel_re590_grid_study() {
             kmax / (U_STAR * U_STAR),
             y[i]
         );
+    }
+}
+
+/// RMS errors of one sheet-flow run against the Revil-Baudard ACVP profiles (z = 0 of the
+/// data at z = 0.04 m of the column): (u_f, u_p, phi). Velocities over every data point;
+/// phi over the points with data (phi > 0; the file writes 0 where there is none).
+fn sheet_flow_rms(m: &Eulerian<'_>) -> Option<(f64, f64, f64)> {
+    let dir = root().join("../shared/data/revil_baudard2015_sheetflow");
+    let u = rows(&dir.join("Revil-Baudard2015_uRxz.txt"))?;
+    let p = rows(&dir.join("Revil-Baudard2015_phi.txt"))?;
+    const Z0: f64 = 0.04;
+    let rms = |f: &[f64], data: &[Vec<f64>]| {
+        (data.iter().map(|r| (interp(m.z(), f, r[0] + Z0) - r[1]).powi(2)).sum::<f64>() / data.len() as f64).sqrt()
+    };
+    let with_phi: Vec<Vec<f64>> = p.into_iter().filter(|r| r[1] > 0.0).collect();
+    Some((rms(m.u_f(), &u), rms(m.u_p(), &u), rms(m.phi(), &with_phi)))
+}
+
+/// The Revil-Baudard sheet flow under the three turbulence closures of
+/// compare_turbulence.toml and the k-omega scenes (mu(I) and kinetic theory): RMS errors of
+/// u and phi against the data and wall times, printed for docs/benchmarks.md. Each run
+/// must end without breakdown and conserve the sediment mass.
+#[test]
+#[ignore]
+fn revil_baudard_turbulence_models() {
+    let ko = "closures.turbulence={type=\"k_omega\"}".to_string();
+    let bf = "closures.turbulence={type=\"mixing_length\", form=\"berzi_fraccarollo\", phi_max=0.61}".to_string();
+    let runs: [(&str, &str, Vec<String>); 5] = [
+        ("mu(I), Li-Sawamoto ML", "cases/revil_baudard2015/sheet_flow_mu_i.toml", vec![]),
+        ("mu(I), Berzi-Fraccarollo ML", "cases/revil_baudard2015/sheet_flow_mu_i.toml", vec![bf]),
+        ("mu(I), k-omega (compare variant)", "cases/revil_baudard2015/sheet_flow_mu_i.toml", vec![ko]),
+        ("mu(I), k-omega (scene)", "cases/revil_baudard2015/sheet_flow_k_omega_mu_i.toml", vec![]),
+        ("kinetic theory, k-omega (scene)", "cases/revil_baudard2015/sheet_flow_k_omega_kinetic.toml", vec![]),
+    ];
+    for (label, file, set) in runs {
+        let s = load(file, &set);
+        let (m, ending, wall) = run(&s);
+        assert!(!matches!(ending, Ending::Unstable(_)), "{label}: {ending:?}");
+        assert!(m.mass_error() < 1e-10, "{label}: mass error {:e}", m.mass_error());
+        let qs: f64 = m.phi().iter().zip(m.u_p()).zip(m.dz()).map(|((p, u), h)| p.max(0.0) * u * h).sum();
+        let qs_star = qs / (0.192f64 * 9.81 * 27e-9).sqrt();
+        match sheet_flow_rms(&m) {
+            Some((uf, up, phi)) => println!(
+                "{label}: {ending:?} at t = {:.0} s, {} steps, wall {wall:.3} s; qs* {qs_star:.3}; surface u_f {:.3} m/s; \
+                 RMS u_f {uf:.4} m/s, u_p {up:.4} m/s, phi {phi:.4}",
+                m.time(),
+                m.steps(),
+                m.u_f()[m.len() - 1]
+            ),
+            None => println!("{label}: reference data not found, wall {wall:.3} s"),
+        }
     }
 }

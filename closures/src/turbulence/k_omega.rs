@@ -344,8 +344,9 @@ impl TwoEquation for KOmega {
             let buoy_w = self.c_4omega * a_star * b;
             let sink_w = self.c_2omega * w + self.c_3omega * drag_rate + (-buoy_w / w).max(0.0);
             let inv_relax = (self.c_2omega * w + self.c_3omega * drag_rate - buoy_w / w).max(0.0);
-            out.omega_source[i] =
-                self.omega_production_factor(re_t) * eps * s2 + buoy_w.max(0.0) + self.gamma(phi) * omega_bed * inv_relax;
+            out.omega_source[i] = self.omega_production_factor(re_t) * eps * s2
+                + buoy_w.max(0.0)
+                + self.gamma(phi) * omega_bed * inv_relax;
             out.omega_sink[i] = sink_w;
             out.omega_diffusivity[i] = nu + nu_t / self.sigma_omega;
         }

@@ -152,9 +152,10 @@ pub trait TwoEquation: Send + Sync {
     /// Where [`TwoEquation::wall_omega`] applies.
     fn wall_location(&self) -> WallOmega;
 
-    /// Bottom-wall value of omega (1/s): at the first cell centre, a distance `z0` from
-    /// the wall, or at the wall face, with `u_star` the wall friction velocity
-    /// sqrt((nu + nu_t) |du/dz|) at the wall and `diameter` the particle diameter.
+    /// Bottom-wall value of omega (1/s): at a cell centre a distance `z0` from the wall
+    /// ([`WallOmega::FirstCell`], `u_star` the wall friction velocity
+    /// sqrt((nu + nu_t) |du/dz|) there) or at the wall face ([`WallOmega::WallFace`],
+    /// `u_star` the friction velocity of the forcing); `diameter` is the particle diameter.
     fn wall_omega(&self, z0: f64, u_star: f64, nu: f64, diameter: f64) -> f64;
 
     /// Uniform initial (k, omega) of a column of height `height` driven at the friction

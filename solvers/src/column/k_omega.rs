@@ -103,7 +103,8 @@ impl KOmegaColumn {
 
     /// One backward-Euler step of length `dt`. `input.col.transported` is ignored (the
     /// column's own k and omega are used); `wall_u_star` is the friction velocity at the
-    /// bottom wall, sqrt((nu + nu_t) |du/dz|) there (eq 31).
+    /// bottom wall, sqrt((nu + nu_t) |du/dz|) there (eq 31), used by a smooth wall; a rough
+    /// wall uses `input.friction_velocity`.
     pub fn advance(
         &mut self,
         model: &dyn TwoEquation,
@@ -122,8 +123,14 @@ impl KOmegaColumn {
         }
         let z = geometry.z;
         let dz = geometry.dz;
-        let wall_omega = model.wall_omega(z[0], wall_u_star, nu, input.col.diameter);
         let location = model.wall_location();
+        // a rough wall takes the friction velocity of the forcing (Cheng, after eq 34): the
+        // resolved wall gradient of a rough wall carries only the viscous share of the stress
+        let u_wall = match location {
+            WallOmega::FirstCell => wall_u_star,
+            WallOmega::WallFace => input.friction_velocity,
+        };
+        let wall_omega = model.wall_omega(z[0], u_wall, nu, input.col.diameter);
         let Self { k, omega, terms, tri, work, .. } = self;
         // k: Dirichlet 0 at the wall face
         assemble(tri, dz, z, &terms.k_diffusivity, &terms.k_source, &terms.k_sink, k, dt);
@@ -145,8 +152,8 @@ impl KOmegaColumn {
                 // the uniform grid, and the error of a value imposed in the first cell only
                 // spreads over a fixed number of cells, i.e. converges only to first order
                 let mut i = 0;
-                while i < n - 1 && (i == 0 || z[i] * wall_u_star / nu <= WALL_PLUS) {
-                    let w = if i == 0 { wall_omega } else { model.wall_omega(z[i], wall_u_star, nu, input.col.diameter) };
+                while i < n - 1 && (i == 0 || z[i] * u_wall / nu <= WALL_PLUS) {
+                    let w = if i == 0 { wall_omega } else { model.wall_omega(z[i], u_wall, nu, input.col.diameter) };
                     tri.lower[i] = 0.0;
                     tri.diag[i] = 1.0;
                     tri.upper[i] = 0.0;
@@ -155,8 +162,11 @@ impl KOmegaColumn {
                 }
             }
             WallOmega::WallFace => {
-                tri.diag[0] += wall;
-                tri.rhs[0] += wall * wall_omega;
+                // the first cell's full diffusivity over the half cell: with the molecular
+                // one alone a rough wall (nu_t > 0 down to the wall) barely feels its value
+                let c = terms.omega_diffusivity[0] / z[0];
+                tri.diag[0] += c;
+                tri.rhs[0] += c * wall_omega;
             }
         }
         k.copy_from_slice(work);
@@ -164,7 +174,12 @@ impl KOmegaColumn {
         for i in 0..n {
             let v = work[i];
             if !(v.is_finite() && v > 0.0) {
-                return Err(TransportFailure { cell: i, field: "omega", value: v, reason: "not finite or not positive" });
+                return Err(TransportFailure {
+                    cell: i,
+                    field: "omega",
+                    value: v,
+                    reason: "not finite or not positive",
+                });
             }
         }
         omega.copy_from_slice(work);
