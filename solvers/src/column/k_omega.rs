@@ -137,8 +137,7 @@ impl KOmegaColumn {
         let wall = nu / z[0];
         tri.diag[0] += wall;
         solve(tri, work, "k")?;
-        for i in 0..n {
-            let v = work[i];
+        for (i, &v) in work.iter().enumerate() {
             if !(v.is_finite() && v >= 0.0) {
                 return Err(TransportFailure { cell: i, field: "k", value: v, reason: "not finite or negative" });
             }
@@ -171,8 +170,7 @@ impl KOmegaColumn {
         }
         k.copy_from_slice(work);
         solve(tri, work, "omega")?;
-        for i in 0..n {
-            let v = work[i];
+        for (i, &v) in work.iter().enumerate() {
             if !(v.is_finite() && v > 0.0) {
                 return Err(TransportFailure {
                     cell: i,
