@@ -108,6 +108,10 @@ pub fn eulerian_report(
     p.push("tau_p", derived.tau_p.clone());
     p.push("tau_f", derived.tau_f.clone());
     p.push("nu_t", m.eddy_viscosity().to_vec());
+    if let Some((k, omega)) = m.k_omega() {
+        p.push("k", k.to_vec());
+        p.push("omega", omega.to_vec());
+    }
     let q: Vec<f64> = m.phi().iter().zip(m.u_p()).map(|(a, b)| a.max(0.0) * b).collect();
     p.push("q_s", q.clone());
     p.push(if m.is_kinetic() { "inertial_number" } else { "control_number" }, derived.control.clone());

@@ -1,9 +1,11 @@
 //! Turbulence closures of the fluid column (family `turbulence`): laminar flow and
-//! algebraic mixing-length models.
+//! algebraic mixing-length models, and the two-phase low-Reynolds k-omega transport model.
 
+pub mod k_omega;
 pub mod laminar;
 pub mod mixing_length;
 
+pub use k_omega::{KOmega, KOmegaWall};
 pub use laminar::Laminar;
 pub use mixing_length::{MixingLength, MixingLengthForm};
 

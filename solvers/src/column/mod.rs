@@ -70,6 +70,7 @@
 //! the field, never a panic.
 
 mod grid;
+pub mod k_omega;
 mod momentum;
 pub mod tridiagonal;
 

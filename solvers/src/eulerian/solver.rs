@@ -10,7 +10,9 @@ use saltus_core::{
 use super::block::BlockTridiagonal;
 use super::config::{Config, Top};
 use super::rheology::{coulomb, Elastic, Rheology};
+use crate::column::k_omega::{ColumnGeometry, KOmegaColumn};
 use crate::column::Tridiagonal;
+use saltus_core::closure::turbulence::{TwoEquation, TwoEquationInput};
 
 /// Volume fraction below which a cell counts as clear fluid for the particle momentum
 /// and temperature equations: their inertia uses max(phi, PHI_FLOOR) so that the rows stay
@@ -164,6 +166,22 @@ pub struct Eulerian<'a> {
     block: BlockTridiagonal,
     xb: Vec<[f64; 2]>,
     tri: Tridiagonal,
+    /// k-omega state, present only when the turbulence closure transports k and omega
+    kw: Option<TwoEquationRun<'a>>,
+}
+
+/// The k and omega of a two-equation turbulence closure with the per-cell inputs its
+/// terms need, allocated only when the scene selects such a closure.
+struct TwoEquationRun<'a> {
+    model: &'a dyn TwoEquation,
+    col: KOmegaColumn,
+    /// friction velocity of the forcing at the bed surface (m/s)
+    u_star: f64,
+    /// g cos(alpha)
+    gravity_normal: f64,
+    shear: Vec<f64>,
+    dphidz: Vec<f64>,
+    drag: Vec<f64>,
 }
 
 /// minmod limiter: the smaller slope when both have the same sign, else 0.
@@ -218,11 +236,23 @@ impl<'a> Eulerian<'a> {
             )));
         };
         let turbulence = cl.turbulence.as_deref().ok_or_else(|| missing("turbulence"))?;
-        if !turbulence.transported().is_empty() {
+        let two_equation = turbulence.as_two_equation();
+        if !turbulence.transported().is_empty() && two_equation.is_none() {
             return Err(Error::Invalid(format!(
-                "{file}: closures.turbulence `{}` transports fields, which the Eulerian solver does not advance yet; use mixing_length or laminar",
-                turbulence.name()
+                "{file}: closures.turbulence `{}` transports fields {:?}, of which the Eulerian solver advances only k and omega of a two-equation closure (k_omega)",
+                turbulence.name(),
+                turbulence.transported()
             )));
+        }
+        if two_equation.is_some() && cfg.domain.top == Top::Lid {
+            return Err(Error::Key {
+                file: scene.path.clone(),
+                key: "domain.top".into(),
+                message: format!(
+                    "`lid` is not supported with closures.turbulence `{}` (no wall treatment at a moving lid); use `free_surface` or `symmetry`",
+                    turbulence.name()
+                ),
+            });
         }
         let fluctuation = cl.fluctuation.as_deref().filter(|f| f.is_active());
         let m = Models {
@@ -283,7 +313,24 @@ impl<'a> Eulerian<'a> {
         };
         let top_wall = wall_stencil(zf[n] - zc[n - 1], zf[n] - zc[n - 2]);
         let v = |x: f64| vec![x; n];
+        let kw = two_equation.map(|model| {
+            // friction velocity of the driving over the water depth: the fluid shear stress
+            // at the bed surface of a clear-water column
+            let drive = c.grad / c.rho_f + c.gx;
+            let u_star = (drive.max(0.0) * d.water_depth.max(dzu)).sqrt();
+            let (k0, w0) = model.initial_state(u_star, height, c.nu_f);
+            TwoEquationRun {
+                model,
+                col: KOmegaColumn::new(n, k0, w0),
+                u_star,
+                gravity_normal: g * cos,
+                shear: v(0.0),
+                dphidz: v(0.0),
+                drag: v(0.0),
+            }
+        });
         Ok(Self {
+            kw,
             c,
             m,
             kinetic,
@@ -529,6 +576,14 @@ impl<'a> Eulerian<'a> {
         }
         // fluid viscosity and eddy viscosity (under-relaxed Picard between steps)
         self.m.viscosity.ratio_batch(&self.phi, &mut self.visc_ratio);
+        let kw_fields;
+        let transported: &[&[f64]] = match &self.kw {
+            Some(kw) => {
+                kw_fields = [kw.col.k.as_slice(), kw.col.omega.as_slice()];
+                &kw_fields
+            }
+            None => &[],
+        };
         let col = ColumnView {
             z: &self.zc,
             dz: &self.dz,
@@ -536,7 +591,7 @@ impl<'a> Eulerian<'a> {
             dudz: &self.gamma_f,
             diameter: c.d,
             nu_f: c.nu_f,
-            transported: &[],
+            transported,
         };
         self.m.turbulence.eddy_viscosity(&col, &mut self.work);
         let w = if self.steps == 0 { 1.0 } else { s.eddy_relaxation };
@@ -558,9 +613,10 @@ impl<'a> Eulerian<'a> {
             let bulk = self.uf.iter().zip(&self.dz).map(|(u, h)| u * h).sum::<f64>() / depth;
             let scales = FlowScales { depth, bulk_velocity: bulk };
             for i in 0..n {
+                let (k, omega) = self.kw.as_ref().map_or((0.0, 0.0), |kw| (kw.col.k[i], kw.col.omega[i]));
                 let tp = TurbulencePoint {
-                    k: 0.0,
-                    omega: 0.0,
+                    k,
+                    omega,
                     nu_t: self.nu_t[i],
                     reynolds_stress: self.nu_t[i] * self.gamma_f[i].abs(),
                 };
@@ -860,11 +916,62 @@ impl<'a> Eulerian<'a> {
         Ok(())
     }
 
+    /// Backward-Euler step of k and omega of the two-equation closure (Cheng et al. eqs
+    /// 21-35) with the shear rate of the new fluid velocity; nothing without such a closure.
+    fn solve_two_equation(&mut self, dt: f64) -> Result<(), Breakdown> {
+        let Some(kw) = self.kw.as_mut() else { return Ok(()) };
+        let n = self.phi.len();
+        let c = self.c;
+        let mut below = 0.0;
+        for i in 0..n {
+            let above = if i + 1 < n { 0.5 * (self.uf[i] + self.uf[i + 1]) } else { self.uf[n - 1] };
+            kw.shear[i] = (above - below) / self.dz[i];
+            below = above;
+        }
+        for i in 0..n {
+            let (l, r) = (i.saturating_sub(1), (i + 1).min(n - 1));
+            kw.dphidz[i] = (self.phi[r] - self.phi[l]) / (self.zc[r] - self.zc[l]);
+            // beta of Cheng eq 23 = phi eps K / phi
+            kw.drag[i] = self.k_drag[i] * (1.0 - self.phi[i].clamp(0.0, 1.0));
+        }
+        let wall_gradient = self.wall[0] * self.uf[0] + self.wall[1] * self.uf[1];
+        let wall_u_star = (c.nu_f * self.visc_ratio[0] * wall_gradient.abs()).sqrt();
+        let input = TwoEquationInput {
+            col: ColumnView {
+                z: &self.zc,
+                dz: &self.dz,
+                phi: &self.phi,
+                dudz: &kw.shear,
+                diameter: c.d,
+                nu_f: c.nu_f,
+                transported: &[],
+            },
+            drag: &kw.drag,
+            dphidz: &kw.dphidz,
+            fluid_density: c.rho_f,
+            particle_density: c.rho_p,
+            gravity_normal: kw.gravity_normal,
+            friction_velocity: kw.u_star,
+        };
+        let geometry = ColumnGeometry { z: &self.zc, dz: &self.dz };
+        let result = kw.col.advance(kw.model, &input, geometry, wall_u_star, dt);
+        result.map_err(|f| self.breakdown(f.cell, f.field, f.value, f.reason.into()))
+    }
+
+    /// Turbulent kinetic energy and specific dissipation rate per cell, when the
+    /// turbulence closure transports them.
+    pub fn k_omega(&self) -> Option<(&[f64], &[f64])> {
+        self.kw.as_ref().map(|kw| (kw.col.k.as_slice(), kw.col.omega.as_slice()))
+    }
+
     fn breakdown(&self, cell: usize, field: &'static str, value: f64, reason: String) -> Breakdown {
         Breakdown { time: self.time, cell, z: self.zc.get(cell).copied().unwrap_or(f64::NAN), field, value, reason }
     }
 
     fn save(&mut self) {
+        if let Some(kw) = &mut self.kw {
+            kw.col.save();
+        }
         let [a, b, c, d, e] = &mut self.saved;
         for (dst, src) in [(a, &self.phi), (b, &self.uf), (c, &self.up), (d, &self.temp), (e, &self.flux)] {
             dst.clear();
@@ -873,6 +980,9 @@ impl<'a> Eulerian<'a> {
     }
 
     fn restore(&mut self) {
+        if let Some(kw) = &mut self.kw {
+            kw.col.restore();
+        }
         let [a, b, c, d, e] = &self.saved;
         self.phi.copy_from_slice(a);
         self.uf.copy_from_slice(b);
@@ -887,6 +997,7 @@ impl<'a> Eulerian<'a> {
         let result = self
             .solve_momentum(dt)
             .and_then(|_| if self.kinetic { self.solve_temperature(dt) } else { Ok(()) })
+            .and_then(|_| self.solve_two_equation(dt))
             .and_then(|_| self.solve_phi(dt));
         match result {
             Ok(()) => Attempt::Accepted,
@@ -922,6 +1033,9 @@ impl<'a> Eulerian<'a> {
             phimax = phimax.max(phi);
         }
         let mut rel = (du / umax).max(dphi / phimax);
+        if let Some(kw) = &self.kw {
+            rel = rel.max(two_equation_change(&kw.col.k, kw.col.saved_k()));
+        }
         if qmax > 1e-300 {
             rel = rel.max(dq / qmax);
         }
@@ -979,6 +1093,12 @@ impl<'a> Eulerian<'a> {
             }
         }
     }
+}
+
+/// Largest change of k relative to its maximum.
+fn two_equation_change(k: &[f64], k0: &[f64]) -> f64 {
+    let kmax = k.iter().fold(1e-300f64, |a, &b| a.max(b));
+    k.iter().zip(k0).fold(0.0f64, |a, (x, y)| a.max((x - y).abs())) / kmax
 }
 
 /// Derived cell profiles, see [`Eulerian::derived`].
