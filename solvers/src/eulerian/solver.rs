@@ -840,13 +840,10 @@ impl<'a> Eulerian<'a> {
             let m = self.mobility[up];
             let dd = 0.5 * ((1.0 - self.phi[l]) * self.drift[l] + (1.0 - self.phi[r]) * self.drift[r]);
             let (pl, pr) = (self.pres[l], self.pres[r]);
-            let (ratio, deferred) = if well_balanced {
-                self.well_balanced_face(j, m, gw, pl.p, pr.p)
-            } else {
-                (1.0, f64::NAN)
-            };
-            // pressure part of the flux: -m ratio dp/dz, ratio = 1 but for local rheologies
-            let mp = m * ratio;
+            // local rheologies: factor r on the pressure part of the flux and the deferred
+            // correction of the weight; kinetic theory: r = 1 and the MUSCL correction below
+            let wb = if well_balanced { Some(self.well_balanced_face(j, m, gw, pl.p, pr.p)) } else { None };
+            let mp = m * wb.map_or(1.0, |w| w.0);
             let mut cl = mp * pl.a / h + dd / h;
             let mut cr = -mp * pr.a / h - dd / h;
             if up == r {
@@ -864,7 +861,7 @@ impl<'a> Eulerian<'a> {
                 (self.phi[r], self.phi[l], if l > 0 { self.phi[l - 1] } else { self.phi[l] })
             };
             let correction = 0.5 * minmod(down - upv, upv - beyond);
-            let deferred = if well_balanced { deferred } else { -m * gw * correction };
+            let deferred = wb.map_or(-m * gw * correction, |w| w.1);
             coeffs[3 * j] = cl;
             coeffs[3 * j + 1] = cr;
             coeffs[3 * j + 2] = -mp * (pr.b - pl.b) / h + deferred;
