@@ -145,11 +145,28 @@ pub enum ColumnError {
         /// tolerance asked
         tol: f64,
     },
-    /// A turbulence closure that transports fields (k-omega), not supported yet.
-    #[error("column: turbulence model `{model}` transports fields, which the column solver does not advance yet")]
+    /// A turbulence closure that transports fields other than the k and omega of a
+    /// two-equation closure.
+    #[error("column: turbulence model `{model}` transports fields other than the k and omega of a two-equation closure, which the column solver does not advance")]
     Unsupported {
         /// model name
         model: &'static str,
+    },
+    /// k or omega of a two-equation closure not finite, negative or singular after a step.
+    #[error("column: {field} = {value} at cell {cell} (z = {z} m) at t = {time} s: {reason}")]
+    TwoEquation {
+        /// `k` or `omega`
+        field: &'static str,
+        /// cell index from the bottom
+        cell: usize,
+        /// cell centre (m)
+        z: f64,
+        /// the offending value
+        value: f64,
+        /// what is wrong
+        reason: &'static str,
+        /// simulated time (s)
+        time: f64,
     },
 }
 
