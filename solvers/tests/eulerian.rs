@@ -351,11 +351,12 @@ end_time = 30.0
 /// (within 10 % here); frictionless grains (case 9) move far more (over twice). Case 17
 /// (e = 0.9) is printed, not gated: the model gives about 18 % more than case 1.
 #[test]
+#[allow(clippy::needless_range_loop)] // k is the case number as well as the index
 fn all_chassagne_cases_reach_steady_state() {
     saltus_closures::link();
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/chassagne2023");
     let mut by_theta = Vec::new();
-    let mut qs_star = vec![0.0; 20];
+    let mut qs_star = [0.0; 20];
     for k in 1..=19 {
         let file = root.join(format!("case{k:02}.toml"));
         let s = Scene::from_file(&file).expect("case");

@@ -537,9 +537,9 @@ impl<'a> Eulerian<'a> {
         };
         for (u, g, top) in [(&self.uf, &mut self.gamma_f, lid), (&self.up, &mut self.gamma_p, None)] {
             let mut below = 0.0;
-            for i in 0..n {
+            for (i, (g, &dz)) in g.iter_mut().zip(&self.dz).enumerate() {
                 let above = if i + 1 < n { face_value(&self.zc, &self.zf, u, i + 1) } else { top.unwrap_or(u[n - 1]) };
-                g[i] = (above - below) / self.dz[i];
+                *g = (above - below) / dz;
                 below = above;
             }
         }
