@@ -1,11 +1,14 @@
 //! Wall time of the Eulerian solver: Chassagne et al. 2023 case 1 (proposed model) from the
 //! bed at rest to steady state, at the paper's resolution (120 cells, d/4) and at 400 cells.
+//! Also the k-omega channel at Re_tau = 587.19 (cases/verification/channel_re590.toml, 120
+//! stretched cells) to steady state, by the Eulerian solver and by `FluidColumn::solve_steady`.
 //! `cargo bench --bench eulerian`
 
 use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use saltus_core::scene::Scene;
+use saltus_solvers::column::{Closures, ColumnParams, Coupling, FluidColumn, Grid, TopBoundary};
 use saltus_solvers::eulerian::{Config, Ending, Eulerian};
 
 fn case01(c: &mut Criterion) {
@@ -28,5 +31,41 @@ fn case01(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, case01);
+fn channel_k_omega(c: &mut Criterion) {
+    saltus_closures::link();
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/verification/channel_re590.toml");
+    let scene = Scene::from_file_with(&file, &[]).expect("channel_re590");
+    let cfg = Config::from_scene(&scene).expect("config");
+    let mut group = c.benchmark_group("k_omega_channel_re590_to_steady");
+    group.sample_size(20);
+    group.bench_function("eulerian_120_stretched", |b| {
+        b.iter(|| {
+            let mut m = Eulerian::new(&scene, cfg.clone()).expect("solver");
+            assert_eq!(m.run(&mut |_| true), Ending::Steady);
+            m.steps()
+        })
+    });
+    let d = &cfg.domain;
+    let grid = Grid::geometric(d.cells, d.water_depth, d.stretching).expect("grid");
+    let params = ColumnParams {
+        pressure_gradient: scene.physics.pressure_gradient,
+        top: TopBoundary::Symmetry,
+        ..ColumnParams::default()
+    };
+    let closures = Closures {
+        viscosity: scene.closures.viscosity.as_deref().expect("viscosity"),
+        turbulence: scene.closures.turbulence.as_deref().expect("turbulence"),
+    };
+    let zero = vec![0.0; d.cells];
+    let coupling = Coupling { phi: &zero, beta: &zero, u_p: &zero };
+    group.bench_function("fluid_column_120_stretched", |b| {
+        b.iter(|| {
+            let mut col = FluidColumn::new(grid.clone(), params).expect("column");
+            col.solve_steady(&coupling, &closures, 1e-10, 5000).expect("steady").iterations
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, case01, channel_k_omega);
 criterion_main!(benches);

@@ -344,9 +344,11 @@ impl TwoEquation for KOmega {
             let buoy_w = self.c_4omega * a_star * b;
             let sink_w = self.c_2omega * w + self.c_3omega * drag_rate + (-buoy_w / w).max(0.0);
             let inv_relax = (self.c_2omega * w + self.c_3omega * drag_rate - buoy_w / w).max(0.0);
-            out.omega_source[i] = self.omega_production_factor(re_t) * eps * s2
-                + buoy_w.max(0.0)
-                + self.gamma(phi) * omega_bed * inv_relax;
+            // outside the bed Gamma underflows to 0; skipping the term there keeps a clear
+            // column finite even when omega_bed is not (d = 0 gives k_s+ = 0, S_r = inf)
+            let gamma = self.gamma(phi);
+            let relax = if gamma > 0.0 { gamma * omega_bed * inv_relax } else { 0.0 };
+            out.omega_source[i] = self.omega_production_factor(re_t) * eps * s2 + buoy_w.max(0.0) + relax;
             out.omega_sink[i] = sink_w;
             out.omega_diffusivity[i] = nu + nu_t / self.sigma_omega;
         }

@@ -16,7 +16,8 @@
 //!
 //! with eps = 1 - phi, nu_eff = nu_f ratio(phi) ([`saltus_core::EffectiveViscosity`]),
 //! nu_t = l_m^2 |du/dz| from [`saltus_core::Turbulence::eddy_viscosity`] (Chassagne eq
-//! 2.8), G_x = -dp/dx (Pa/m) and beta (kg m^-3 s^-1) the implicit drag coefficient with
+//! 2.8) or nu_t = alpha* k / omega of a two-equation closure (Cheng et al. eq 29, k and
+//! omega advanced by [`k_omega::KOmegaColumn`] after each momentum step), G_x = -dp/dx (Pa/m) and beta (kg m^-3 s^-1) the implicit drag coefficient with
 //! the particle velocity u_p, both per cell from the caller ([`Coupling`]).
 //!
 //! eps factors: eps multiplies both nu_eff and nu_t, once, as in Chassagne eq 2.7. Maurin
@@ -63,9 +64,12 @@
 //!
 //! Backward Euler, diffusion and drag fully implicit, nu_t lagged (Picard), solved by
 //! the tridiagonal double sweep (Thomas) as in Maurin et al. 2015 (text after eq 19):
-//! [`FluidColumn::step`]. [`FluidColumn::solve_steady`] iterates Picard with infinite
-//! pseudo time step and under-relaxed nu_t until the residual of the steady equation is
-//! below a tolerance. Inputs are checked (a NaN in beta is an error naming the cell and
+//! [`FluidColumn::step`] (with a two-equation closure, k and omega then take one
+//! backward-Euler step with the shear of the new velocity). [`FluidColumn::solve_steady`]
+//! iterates Picard with infinite pseudo time step and under-relaxed nu_t until the
+//! residual of the steady equation is below a tolerance (with a two-equation closure: a
+//! steady momentum solve, then a pseudo-time step of k and omega, until both settle).
+//! Inputs are checked (a NaN in beta is an error naming the cell and
 //! the field) and a non-finite u_f after a solve is an error naming the time, the cell and
 //! the field, never a panic.
 
@@ -145,11 +149,28 @@ pub enum ColumnError {
         /// tolerance asked
         tol: f64,
     },
-    /// A turbulence closure that transports fields (k-omega), not supported yet.
-    #[error("column: turbulence model `{model}` transports fields, which the column solver does not advance yet")]
+    /// A turbulence closure that transports fields other than the k and omega of a
+    /// two-equation closure.
+    #[error("column: turbulence model `{model}` transports fields other than the k and omega of a two-equation closure, which the column solver does not advance")]
     Unsupported {
         /// model name
         model: &'static str,
+    },
+    /// k or omega of a two-equation closure not finite, negative or singular after a step.
+    #[error("column: {field} = {value} at cell {cell} (z = {z} m) at t = {time} s: {reason}")]
+    TwoEquation {
+        /// `k` or `omega`
+        field: &'static str,
+        /// cell index from the bottom
+        cell: usize,
+        /// cell centre (m)
+        z: f64,
+        /// the offending value
+        value: f64,
+        /// what is wrong
+        reason: &'static str,
+        /// simulated time (s)
+        time: f64,
     },
 }
 

@@ -1,7 +1,9 @@
 //! Streamwise fluid momentum of the column: [`FluidColumn`].
 
+use saltus_core::closure::turbulence::{TwoEquation, TwoEquationInput};
 use saltus_core::{ColumnView, EffectiveViscosity, Turbulence};
 
+use super::k_omega::{ColumnGeometry, KOmegaColumn};
 use super::tridiagonal::Tridiagonal;
 use super::{ColumnError, Grid};
 
@@ -35,6 +37,16 @@ pub struct ColumnParams {
     pub pressure_gradient: f64,
     /// top boundary condition
     pub top: TopBoundary,
+    /// particle density rho_p (kg/m^3), for the two-phase terms of a two-equation
+    /// closure (buoyancy, drag damping; Cheng et al. eqs 21, 25)
+    pub particle_density: f64,
+    /// wall-normal gravity g cos(alpha) (m/s^2), for the buoyancy term of a two-equation
+    /// closure (Cheng et al. eq 21)
+    pub gravity_normal: f64,
+    /// friction velocity of the forcing at the bed surface (m/s) for the rough-wall and
+    /// in-bed omega of a two-equation closure (Cheng et al. eq 34); `None`: that of the
+    /// driving over the whole column, sqrt((g sin(alpha) + G_x / rho_f) H)
+    pub friction_velocity: Option<f64>,
     /// under-relaxation omega in (0, 1] of nu_t in [`FluidColumn::solve_steady`]:
     /// nu_t <- omega nu_t(u) + (1 - omega) nu_t. The default 0.5 turns the Picard map of a
     /// fully turbulent mixing-length layer (nu_t <- C / nu_t, which oscillates with
@@ -52,6 +64,9 @@ impl Default for ColumnParams {
             gravity_x: 0.0,
             pressure_gradient: 0.0,
             top: TopBoundary::FreeSurface,
+            particle_density: 2650.0,
+            gravity_normal: 9.81,
+            friction_velocity: None,
             relaxation: 0.5,
         }
     }
@@ -62,7 +77,8 @@ impl Default for ColumnParams {
 pub struct Closures<'a> {
     /// effective viscosity nu_eff = nu_f ratio(phi)
     pub viscosity: &'a dyn EffectiveViscosity,
-    /// eddy viscosity nu_t (algebraic closures only for now)
+    /// eddy viscosity nu_t: an algebraic closure, or a two-equation one (k-omega) whose k
+    /// and omega the column then allocates (first step) and advances
     pub turbulence: &'a dyn Turbulence,
 }
 
@@ -143,7 +159,25 @@ pub struct FluidColumn {
     /// driving per unit volume eps (rho_f g sin(alpha) + G_x) per cell (Pa/m)
     source: Vec<f64>,
     tri: Tridiagonal,
+    /// k and omega of a two-equation closure, allocated on the first step with one
+    kw: Option<TwoEquationState>,
 }
+
+/// k, omega and the per-cell inputs of their terms.
+#[derive(Clone, Debug)]
+struct TwoEquationState {
+    col: KOmegaColumn,
+    /// beta of Cheng et al. eq 23 (drag per unit particle volume per unit slip)
+    drag: Vec<f64>,
+    dphidz: Vec<f64>,
+}
+
+/// Pseudo-time step of k and omega in [`FluidColumn::solve_steady`] in units of the
+/// turbulent time scale H / u*: first step and cap. The momentum is solved to steady state
+/// with the lagged nu_t at every iteration; steps much longer than ~10 H/u* make the lag
+/// oscillate (the Eulerian channel stalls at 1000 s = 1500 H/u*).
+const PSEUDO_DT_FIRST: f64 = 0.01;
+const PSEUDO_DT_CAP: f64 = 10.0;
 
 impl FluidColumn {
     /// A column at rest (u = 0, t = 0, clear water) on `grid`.
@@ -165,7 +199,21 @@ impl FluidColumn {
                 reason: "must be finite and >= 0",
             });
         }
-        for (name, v) in [("gravity_x", p.gravity_x), ("pressure_gradient", p.pressure_gradient)] {
+        positive("particle density", p.particle_density)?;
+        if let Some(u) = p.friction_velocity {
+            if !(u.is_finite() && u >= 0.0) {
+                return Err(ColumnError::InvalidParameter {
+                    name: "friction_velocity",
+                    value: u,
+                    reason: "must be finite and >= 0",
+                });
+            }
+        }
+        for (name, v) in [
+            ("gravity_x", p.gravity_x),
+            ("pressure_gradient", p.pressure_gradient),
+            ("gravity_normal", p.gravity_normal),
+        ] {
             if !v.is_finite() {
                 return Err(ColumnError::InvalidParameter { name, value: v, reason: "must be finite" });
             }
@@ -211,6 +259,7 @@ impl FluidColumn {
             u_p: vec![0.0; n],
             source: vec![0.0; n],
             tri: Tridiagonal::new(n),
+            kw: None,
             grid,
         };
         let s = col.params.density * col.params.gravity_x + col.params.pressure_gradient;
@@ -283,6 +332,12 @@ impl FluidColumn {
         &self.nu_t
     }
 
+    /// Turbulent kinetic energy k (m^2/s^2) and specific dissipation rate omega (1/s) per
+    /// cell of a two-equation closure; `None` before the first step with one.
+    pub fn k_omega(&self) -> Option<(&[f64], &[f64])> {
+        self.kw.as_ref().map(|kw| (kw.col.k.as_slice(), kw.col.omega.as_slice()))
+    }
+
     /// eps (nu_eff + nu_t) per cell (m^2/s), the kinematic diffusivity of the momentum
     /// equation.
     pub fn diffusivity(&self) -> &[f64] {
@@ -344,8 +399,12 @@ impl FluidColumn {
         self.update_coefficients();
         let t_new = if dt.is_finite() { self.time + dt } else { self.time };
         self.solve_linear(dt, t_new)?;
-        self.time = t_new;
         self.update_derived();
+        if let Some(model) = closures.turbulence.as_two_equation() {
+            // k and omega with the shear of the new velocity (as the Eulerian solver)
+            self.advance_two_equation(model, dt, t_new)?;
+        }
+        self.time = t_new;
         Ok(())
     }
 
@@ -367,6 +426,9 @@ impl FluidColumn {
         max_iter: usize,
     ) -> Result<SteadyReport, ColumnError> {
         self.load_inputs(coupling, closures)?;
+        if let Some(model) = closures.turbulence.as_two_equation() {
+            return self.solve_steady_two_equation(model, closures.turbulence, tol, max_iter);
+        }
         let omega = self.params.relaxation;
         let mut it = 0;
         loop {
@@ -391,6 +453,113 @@ impl FluidColumn {
         }
     }
 
+    /// Steady state with a two-equation closure: every iteration solves the momentum to
+    /// steady state with nu_t of the current k and omega, then advances k and omega by a
+    /// pseudo-time step growing from 0.01 to 10 H/u*; converged when the momentum residual
+    /// and the largest change of k per iteration relative to its maximum are both <= `tol`.
+    fn solve_steady_two_equation(
+        &mut self,
+        model: &dyn TwoEquation,
+        turbulence: &dyn Turbulence,
+        tol: f64,
+        max_iter: usize,
+    ) -> Result<SteadyReport, ColumnError> {
+        let scale = self.turbulent_time_scale();
+        let mut dt = PSEUDO_DT_FIRST * scale;
+        let mut change = f64::INFINITY;
+        let mut it = 0;
+        loop {
+            self.evaluate_turbulence(turbulence)?;
+            std::mem::swap(&mut self.nu_t, &mut self.nu_t_work);
+            self.update_coefficients();
+            self.update_stresses();
+            let worst = self.residual.max(change);
+            if worst <= tol {
+                return Ok(SteadyReport { iterations: it, residual: worst });
+            }
+            if it == max_iter {
+                return Err(ColumnError::NotConverged { iterations: it, residual: worst, tol });
+            }
+            self.solve_linear(f64::INFINITY, self.time)?;
+            self.update_faces();
+            let kw = self.kw.as_mut().ok_or(ColumnError::Unsupported { model: turbulence.name() })?;
+            kw.col.save();
+            self.advance_two_equation(model, dt, self.time)?;
+            if let Some(kw) = &self.kw {
+                let kmax = kw.col.k.iter().fold(1e-300f64, |a, &b| a.max(b));
+                change = kw.col.k.iter().zip(kw.col.saved_k()).fold(0.0f64, |a, (x, y)| a.max((x - y).abs())) / kmax;
+            }
+            dt = (dt * 1.2).min(PSEUDO_DT_CAP * scale);
+            it += 1;
+        }
+    }
+
+    /// Friction velocity of the forcing at the bed surface (m/s): the given one, else that
+    /// of the driving over the whole column.
+    fn forcing_friction_velocity(&self) -> f64 {
+        let p = &self.params;
+        p.friction_velocity
+            .unwrap_or_else(|| ((p.gravity_x + p.pressure_gradient / p.density).max(0.0) * self.grid.height()).sqrt())
+    }
+
+    /// H / u* of the forcing, or H^2 / nu without forcing (s).
+    fn turbulent_time_scale(&self) -> f64 {
+        let h = self.grid.height();
+        let u = self.forcing_friction_velocity();
+        if u > 0.0 {
+            h / u
+        } else {
+            h * h / self.params.viscosity
+        }
+    }
+
+    /// One backward-Euler step of k and omega ([`KOmegaColumn::advance`]) with the current
+    /// shear rate, volume fraction and drag; `time` names the time of a failure.
+    fn advance_two_equation(&mut self, model: &dyn TwoEquation, dt: f64, time: f64) -> Result<(), ColumnError> {
+        let u_star = self.forcing_friction_velocity();
+        let n = self.u.len();
+        let zc = self.grid.centres();
+        let Some(kw) = self.kw.as_mut() else { return Ok(()) };
+        for i in 0..n {
+            let (l, r) = (i.saturating_sub(1), (i + 1).min(n - 1));
+            kw.dphidz[i] = (self.phi[r] - self.phi[l]) / (zc[r] - zc[l]);
+            // beta of eq 23 per unit particle volume: the coupling's beta is per unit
+            // mixture volume, phi times it; it only enters multiplied by phi again
+            let phi = self.phi[i];
+            kw.drag[i] = if phi > 1e-12 { self.beta[i] / phi } else { 0.0 };
+        }
+        // wall friction velocity of eq 31 from the resolved wall gradient (nu_t = 0 at the
+        // wall), as the Eulerian solver
+        let wall_gradient = self.bottom.ca * self.u[0] + self.bottom.cb * self.u[1];
+        let wall_u_star = (self.params.viscosity * self.ratio[0] * wall_gradient.abs()).sqrt();
+        let input = TwoEquationInput {
+            col: ColumnView {
+                z: zc,
+                dz: self.grid.dz(),
+                phi: &self.phi,
+                dudz: &self.dudz,
+                diameter: self.params.diameter,
+                nu_f: self.params.viscosity,
+                transported: &[],
+            },
+            drag: &kw.drag,
+            dphidz: &kw.dphidz,
+            fluid_density: self.params.density,
+            particle_density: self.params.particle_density,
+            gravity_normal: self.params.gravity_normal,
+            friction_velocity: u_star,
+        };
+        let geometry = ColumnGeometry { z: zc, dz: self.grid.dz() };
+        kw.col.advance(model, &input, geometry, wall_u_star, dt).map_err(|f| ColumnError::TwoEquation {
+            field: f.field,
+            cell: f.cell,
+            z: zc[f.cell.min(n - 1)],
+            value: f.value,
+            reason: f.reason,
+            time,
+        })
+    }
+
     fn invalid(&self, field: &'static str, cell: usize, value: f64, reason: &'static str) -> ColumnError {
         ColumnError::InvalidInput { field, cell, z: self.grid.centres()[cell], value, reason }
     }
@@ -402,8 +571,27 @@ impl FluidColumn {
     /// Check and copy the coupling inputs; effective viscosity ratio and driving.
     fn load_inputs(&mut self, c: &Coupling<'_>, closures: &Closures<'_>) -> Result<(), ColumnError> {
         let n = self.u.len();
-        if !closures.turbulence.transported().is_empty() {
+        let two_equation = closures.turbulence.as_two_equation();
+        if !closures.turbulence.transported().is_empty() && two_equation.is_none() {
             return Err(ColumnError::Unsupported { model: closures.turbulence.name() });
+        }
+        if let Some(model) = two_equation {
+            if let TopBoundary::Lid { velocity } = self.params.top {
+                return Err(ColumnError::InvalidParameter {
+                    name: "top",
+                    value: velocity,
+                    reason: "a lid has no wall treatment for k and omega; use a free surface or a symmetry plane",
+                });
+            }
+            if self.kw.is_none() {
+                let (k0, w0) =
+                    model.initial_state(self.forcing_friction_velocity(), self.grid.height(), self.params.viscosity);
+                self.kw = Some(TwoEquationState {
+                    col: KOmegaColumn::new(n, k0, w0),
+                    drag: vec![0.0; n],
+                    dphidz: vec![0.0; n],
+                });
+            }
         }
         for (field, s) in [("phi", c.phi), ("beta", c.beta), ("u_p", c.u_p)] {
             if s.len() != n {
@@ -443,6 +631,14 @@ impl FluidColumn {
 
     /// nu_t from the current shear rate into `nu_t_work`.
     fn evaluate_turbulence(&mut self, turbulence: &dyn Turbulence) -> Result<(), ColumnError> {
+        let kw_fields;
+        let transported: &[&[f64]] = match &self.kw {
+            Some(kw) => {
+                kw_fields = [kw.col.k.as_slice(), kw.col.omega.as_slice()];
+                &kw_fields
+            }
+            None => &[],
+        };
         let col = ColumnView {
             z: self.grid.centres(),
             dz: self.grid.dz(),
@@ -450,7 +646,7 @@ impl FluidColumn {
             dudz: &self.dudz,
             diameter: self.params.diameter,
             nu_f: self.params.viscosity,
-            transported: &[],
+            transported,
         };
         turbulence.eddy_viscosity(&col, &mut self.nu_t_work);
         if let Some(i) = self.nu_t_work.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {

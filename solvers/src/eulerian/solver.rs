@@ -199,6 +199,14 @@ fn minmod(a: f64, b: f64) -> f64 {
     }
 }
 
+/// Value of the cell field `u` at interior face `j`, linear between the two centres (the
+/// mean of the two on a uniform grid).
+#[inline]
+fn face_value(zc: &[f64], zf: &[f64], u: &[f64], j: usize) -> f64 {
+    let t = (zf[j] - zc[j - 1]) / (zc[j] - zc[j - 1]);
+    u[j - 1] + t * (u[j] - u[j - 1])
+}
+
 fn wall_stencil(a: f64, b: f64) -> [f64; 3] {
     // du/ds at the wall from u_w, u(a), u(b), exact for quadratics: [c_w, c_a, c_b]
     [-(a + b) / (a * b), b / (a * (b - a)), -a / (b * (b - a))]
@@ -281,13 +289,23 @@ impl<'a> Eulerian<'a> {
         let d = &cfg.domain;
         let n = d.cells;
         let height = d.bed_height + d.water_depth;
-        let dzu = height / n as f64;
-        let zf: Vec<f64> = (0..=n).map(|j| j as f64 * dzu).collect();
-        let zc: Vec<f64> = (0..n).map(|i| (i as f64 + 0.5) * dzu).collect();
-        let dz = vec![dzu; n];
-        let mut h = vec![dzu; n + 1];
-        h[0] = 0.5 * dzu;
-        h[n] = 0.5 * dzu;
+        // uniform, or geometric from the wall (domain.stretching, checked by Config)
+        let grid = crate::column::Grid::geometric(n, height, d.stretching).map_err(|e| Error::OutOfRange {
+            file: scene.path.clone(),
+            key: "domain.stretching".into(),
+            value: d.stretching.to_string(),
+            allowed: format!("a grid of domain.cells over the column: {e}"),
+        })?;
+        let zf = grid.faces().to_vec();
+        let zc = grid.centres().to_vec();
+        let dz = grid.dz().to_vec();
+        // distances between neighbouring centres (the wall and the top: half cells)
+        let mut h = vec![0.0; n + 1];
+        h[0] = zc[0];
+        h[n] = zf[n] - zc[n - 1];
+        for j in 1..n {
+            h[j] = zc[j] - zc[j - 1];
+        }
         let phi_max = m.rheology.phi_max();
         let bed_phi = d.bed_phi.unwrap_or(if 0.61 < 0.95 * phi_max { 0.61 } else { 0.95 * phi_max });
         if bed_phi >= phi_max || d.suspension_phi >= phi_max {
@@ -302,7 +320,7 @@ impl<'a> Eulerian<'a> {
         // so that the sediment mass is exactly bed_phi * bed_height
         let phi: Vec<f64> = (0..n)
             .map(|i| {
-                let inside = ((d.bed_height - zf[i]) / dzu).clamp(0.0, 1.0);
+                let inside = ((d.bed_height - zf[i]) / dz[i]).clamp(0.0, 1.0);
                 inside * bed_phi + (1.0 - inside) * d.suspension_phi
             })
             .collect();
@@ -320,7 +338,7 @@ impl<'a> Eulerian<'a> {
             // friction velocity of the driving over the water depth: the fluid shear stress
             // at the bed surface of a clear-water column
             let drive = c.grad / c.rho_f + c.gx;
-            let u_star = (drive.max(0.0) * d.water_depth.max(dzu)).sqrt();
+            let u_star = (drive.max(0.0) * d.water_depth.max(dz[n - 1])).sqrt();
             let (k0, w0) = model.initial_state(u_star, height, c.nu_f);
             TwoEquationRun {
                 model,
@@ -523,9 +541,9 @@ impl<'a> Eulerian<'a> {
         };
         for (u, g, top) in [(&self.uf, &mut self.gamma_f, lid), (&self.up, &mut self.gamma_p, None)] {
             let mut below = 0.0;
-            for i in 0..n {
-                let above = if i + 1 < n { 0.5 * (u[i] + u[i + 1]) } else { top.unwrap_or(u[n - 1]) };
-                g[i] = (above - below) / self.dz[i];
+            for (i, (g, &dz)) in g.iter_mut().zip(&self.dz).enumerate() {
+                let above = if i + 1 < n { face_value(&self.zc, &self.zf, u, i + 1) } else { top.unwrap_or(u[n - 1]) };
+                *g = (above - below) / dz;
                 below = above;
             }
         }
@@ -986,7 +1004,7 @@ impl<'a> Eulerian<'a> {
         let c = self.c;
         let mut below = 0.0;
         for i in 0..n {
-            let above = if i + 1 < n { 0.5 * (self.uf[i] + self.uf[i + 1]) } else { self.uf[n - 1] };
+            let above = if i + 1 < n { face_value(&self.zc, &self.zf, &self.uf, i + 1) } else { self.uf[n - 1] };
             kw.shear[i] = (above - below) / self.dz[i];
             below = above;
         }
