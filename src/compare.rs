@@ -1,6 +1,6 @@
 //! `saltus compare`: one base scene, several variants of it (each a list of `--set`
-//! overrides), run in parallel; one table of their summaries and one figure of their
-//! profiles over the base scene's reference data.
+//! overrides), run in parallel; one table of their summaries with their RMS differences
+//! from the base scene's reference data, and one figure of their profiles over that data.
 //!
 //! ```toml
 //! base = "case01.toml"            # scene file, relative to this file
@@ -27,6 +27,7 @@ use saltus_core::Error;
 use saltus_solvers::RunReport;
 use serde::Deserialize;
 
+use crate::errors;
 use crate::plot::{self, Reference, COMPARE_PANELS};
 use crate::runner;
 
@@ -173,6 +174,11 @@ pub struct CompareReport {
     pub figure: Option<PathBuf>,
     /// warnings of the runs and the figure, each once
     pub warnings: Vec<String>,
+    /// profile columns compared with the base scene's reference data (`rms_<column>` in
+    /// the table, after [`COLUMNS`]), see [`crate::errors`]
+    pub compared: Vec<String>,
+    /// per variant, the RMS difference of each compared column (`None`: no run or no row)
+    pub rms: Vec<Vec<Option<f64>>>,
 }
 
 impl CompareReport {
@@ -185,15 +191,24 @@ impl CompareReport {
     pub fn rows(&self, precise: bool) -> (Vec<String>, Vec<Vec<String>>) {
         let mut header = vec!["variant".to_string()];
         header.extend(COLUMNS.iter().map(|c| c.to_string()));
+        header.extend(self.compared.iter().map(|c| format!("rms_{c}")));
         header.push("error".into());
         let rows = self
             .runs
             .iter()
-            .map(|r| {
+            .enumerate()
+            .map(|(k, r)| {
                 let mut row = vec![r.name.clone()];
                 match &r.report {
                     Some(rep) => row.extend(summary_cells(&rep.summary, precise)),
                     None => row.extend(COLUMNS.iter().map(|_| String::new())),
+                }
+                for e in self.rms.get(k).into_iter().flatten() {
+                    row.push(match (e, precise) {
+                        (None, _) => String::new(),
+                        (Some(v), true) => format!("{v:?}"),
+                        (Some(v), false) => format!("{v:.4}"),
+                    });
                 }
                 row.push(r.error.clone().unwrap_or_default());
                 row
@@ -285,7 +300,35 @@ pub fn run(cmp: &Comparison, out: &Path, progress: bool) -> anyhow::Result<Compa
             warnings.push(w.clone());
         }
     }
-    let mut report = CompareReport { out: out.to_path_buf(), runs, table: out.join(TABLE), figure: None, warnings };
+    // reference data of the base scene: RMS columns of the table, symbols of the figure
+    let png = out.join(FIGURE);
+    let base = Scene::from_file(&cmp.base).with_context(|| format!("{}: key `base`", cmp.file.display()))?;
+    let reference = match runner::load_reference(&base) {
+        Ok(r) => r,
+        Err(e) => {
+            warnings.push(format!("{e:#}; no reference data in {} and {}", TABLE, png.display()));
+            Vec::new()
+        }
+    };
+    // each compared column from the first reference file that has it
+    let sources: Vec<(String, &crate::table::Table)> = errors::COMPARED
+        .iter()
+        .filter_map(|c| reference.iter().find(|(_, t)| t.get(c).is_some()).map(|(_, t)| (c.to_string(), t)))
+        .collect();
+    let rms = runs
+        .iter()
+        .map(|r| {
+            sources
+                .iter()
+                .map(|(c, t)| {
+                    r.report.as_ref().and_then(|rep| errors::rms_difference(&rep.profiles, t, c)).map(|e| e.0)
+                })
+                .collect()
+        })
+        .collect();
+    let compared = sources.into_iter().map(|(c, _)| c).collect();
+    let mut report =
+        CompareReport { out: out.to_path_buf(), runs, table: out.join(TABLE), figure: None, warnings, compared, rms };
 
     let (header, rows) = report.rows(true);
     let mut w =
@@ -306,16 +349,6 @@ pub fn run(cmp: &Comparison, out: &Path, progress: bool) -> anyhow::Result<Compa
         })
         .collect();
     if !curves.is_empty() {
-        let png = out.join(FIGURE);
-        let base = Scene::from_file(&cmp.base).with_context(|| format!("{}: key `base`", cmp.file.display()))?;
-        let reference = match runner::load_reference(&base) {
-            Ok(r) => r,
-            Err(e) => {
-                let w = format!("{e:#}; {} drawn without reference data", png.display());
-                report.warnings.push(w);
-                Vec::new()
-            }
-        };
         let reference: Vec<Reference> = reference.iter().map(|(label, table)| Reference { label, table }).collect();
         match plot::draw_profiles(&cmp.meta.name, &COMPARE_PANELS, &curves, &reference, &png) {
             Ok(()) => report.figure = Some(png),

@@ -3,6 +3,7 @@
 //! lives here: every number comes from a closure or a solver.
 
 pub mod compare;
+pub mod errors;
 pub mod eval;
 pub mod listing;
 pub mod plot;

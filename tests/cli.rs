@@ -511,10 +511,18 @@ fn compare_runs_both_models_of_case01() {
         "steps",
         "wall_time_s",
         "mass_error",
+        "rms_phi",
+        "rms_u_p",
+        "rms_u_f",
+        "rms_theta_g",
         "error",
     ];
     assert_eq!(header, expected);
     assert_eq!(rows.len(), 2, "{rows:?}");
+    // against the DEM profile (the base scene's reference): the proposed model is closer in
+    // phi and u_p, as in the paper's figures 3 and 8
+    let rms = |r: usize, c: &str| -> f64 { cell(&header, &rows[r], c).parse().unwrap() };
+    assert!(rms(1, "rms_phi") < rms(0, "rms_phi") && rms(1, "rms_u_p") < rms(0, "rms_u_p"), "{rows:?}");
     assert_eq!(cell(&header, &rows[0], "variant"), "initial (Garzo-Dufty)");
     assert_eq!(cell(&header, &rows[1], "variant"), "proposed");
     let qs: Vec<f64> = rows.iter().map(|r| cell(&header, r, "qs_star").parse().unwrap()).collect();

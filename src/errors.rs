@@ -1,0 +1,80 @@
+//! Differences between a run's profiles and reference data, for the comparison table.
+//!
+//! The run's profile is interpolated linearly in z at each reference row inside the span of
+//! its cell centres; rows outside are skipped (no extrapolation). For particle-phase
+//! columns (`u_p`, `theta_g`) a reference value of exactly 0 means "no grains, no data" (the
+//! DEM files write 0 above the granular layer) and the row is skipped.
+
+use saltus_solvers::Profiles;
+
+use crate::table::Table;
+
+/// Profile columns that reference data can be compared against, in table order.
+pub const COMPARED: [&str; 4] = ["phi", "u_p", "u_f", "theta_g"];
+
+/// Root-mean-square difference of column `name` between `run` and `reference` with the
+/// number of reference rows used, or `None` when either lacks the column or no row lies
+/// inside the run's z span.
+pub fn rms_difference(run: &Profiles, reference: &Table, name: &str) -> Option<(f64, usize)> {
+    let (zc, f) = (run.get("z")?, run.get(name)?);
+    let (zr, fr) = (reference.get("z")?, reference.get(name)?);
+    let particle = matches!(name, "u_p" | "theta_g");
+    let (lo, hi) = (*zc.first()?, *zc.last()?);
+    let mut sum = 0.0;
+    let mut count = 0usize;
+    for (&z, &want) in zr.iter().zip(fr) {
+        if !(z >= lo && z <= hi && want.is_finite()) || (particle && want == 0.0) {
+            continue;
+        }
+        // first centre at or above z (exists: z <= hi)
+        let j = zc.partition_point(|&c| c < z).min(zc.len() - 1);
+        let got = if j == 0 {
+            f[0]
+        } else {
+            let t = (z - zc[j - 1]) / (zc[j] - zc[j - 1]);
+            f[j - 1] + t * (f[j] - f[j - 1])
+        };
+        if got.is_finite() {
+            sum += (got - want).powi(2);
+            count += 1;
+        }
+    }
+    (count > 0).then(|| ((sum / count as f64).sqrt(), count))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run() -> Profiles {
+        let mut p = Profiles::default();
+        p.push("z", vec![0.0, 1.0, 2.0]);
+        p.push("phi", vec![0.6, 0.3, 0.0]);
+        p.push("u_p", vec![0.0, 1.0, 2.0]);
+        p
+    }
+
+    fn table(cols: &[(&str, Vec<f64>)]) -> Table {
+        let mut t = Table::default();
+        for (n, v) in cols {
+            t.push(*n, v.clone());
+        }
+        t
+    }
+
+    #[test]
+    fn identical_data_give_zero_and_offsets_give_the_offset() {
+        let r = table(&[("z", vec![0.5, 1.5]), ("phi", vec![0.45, 0.15])]);
+        let (e, n) = rms_difference(&run(), &r, "phi").unwrap();
+        assert!(e < 1e-15 && n == 2);
+        let r = table(&[("z", vec![0.5, 1.5]), ("phi", vec![0.55, 0.25])]);
+        assert!((rms_difference(&run(), &r, "phi").unwrap().0 - 0.1).abs() < 1e-12);
+    }
+
+    #[test]
+    fn rows_outside_the_column_and_particle_zeros_are_skipped() {
+        let r = table(&[("z", vec![-1.0, 0.5, 1.5, 3.0]), ("u_p", vec![9.0, 0.5, 0.0, 9.0])]);
+        assert_eq!(rms_difference(&run(), &r, "u_p"), Some((0.0, 1)));
+        assert_eq!(rms_difference(&run(), &r, "u_f"), None);
+    }
+}
