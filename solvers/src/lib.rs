@@ -155,8 +155,14 @@ pub fn eulerian_report(
         cells: m.len(),
         error,
     };
+    // a column without moving grains (clear water) has no transport levels
+    let layers = if z1.is_finite() && summary.transport_layer_thickness.is_finite() {
+        format!("bed surface {z1:.4} m, transport layer {:.4} m", summary.transport_layer_thickness)
+    } else {
+        "no sediment transport".to_string()
+    };
     let text = format!(
-        "{}: {} after {:.3} s simulated ({} steps, {} rejected) in {:.3} s wall time; qs* = {:.4} (qs = {:.4e} m^2/s), Shields {:.3}, bed surface {:.4} m, transport layer {:.4} m, mass error {:.1e}",
+        "{}: {} after {:.3} s simulated ({} steps, {} rejected) in {:.3} s wall time; qs* = {:.4} (qs = {:.4e} m^2/s), Shields {:.3}, {layers}, mass error {:.1e}",
         scene.meta.name,
         if summary.steady { "steady" } else { ending_name },
         summary.sim_time_s,
@@ -166,8 +172,6 @@ pub fn eulerian_report(
         summary.qs_star,
         qs,
         summary.shields,
-        z1,
-        summary.transport_layer_thickness,
         summary.mass_error
     );
     RunReport { profiles: p, summary, text }
