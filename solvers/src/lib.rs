@@ -11,6 +11,7 @@
 
 pub mod column;
 pub mod eulerian;
+pub mod lagrangian;
 pub mod output;
 
 use std::fmt;
