@@ -28,7 +28,7 @@ use super::particles::{Box3, Particles};
 
 /// Particles per parallel work item: large enough to amortise scheduling, small enough
 /// to balance two cores.
-pub const CHUNK: usize = 1024;
+pub const CHUNK: usize = 256;
 
 /// A flat wall at `position` along `axis`; particles live on the side `sign` (+1: above).
 #[derive(Clone, Copy, Debug, PartialEq)]
