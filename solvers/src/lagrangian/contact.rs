@@ -183,3 +183,44 @@ pub(crate) fn contact_force(law: &ContactLaw, c: &ContactInput, h: &mut [f64; 3]
 pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn damping_ratio_limits(e in 1e-3f64..=1.0) {
+            // zeta decreases from ~1 (e -> 0) to 0 (e = 1): underdamped for every e > 0
+            let law = ContactLaw::linear(1e4, 1e4, e, 0.4);
+            prop_assert!(law.zeta >= 0.0 && law.zeta < 1.0);
+            // closed form of the damped oscillator: e = exp(-pi zeta / sqrt(1 - zeta^2))
+            let back = (-std::f64::consts::PI * law.zeta / (1.0 - law.zeta * law.zeta).sqrt()).exp();
+            prop_assert!((back / e - 1.0).abs() < 1e-12);
+        }
+
+        #[test]
+        fn coulomb_cap_holds(delta in 1e-9f64..1e-4, vt in -10.0f64..10.0, mu in 0.0f64..2.0) {
+            let law = ContactLaw::linear(1e4, 1e4, 0.7, mu);
+            let c = ContactInput { n: [0.0, 0.0, 1.0], delta, v_rel: [vt, 0.0, 0.0], sqrt_m: 0.01, r_eff: 0.003 };
+            let mut h = [0.0; 3];
+            let f = contact_force(&law, &c, &mut h, 1e-4);
+            let fn_ = -f[2];
+            prop_assert!(f[0].abs() <= mu * fn_.max(0.0) * (1.0 + 1e-12) + 1e-300);
+            // the spring always holds the force it transmits
+            prop_assert!((law.kt * h[0] - f[0]).abs() <= 1e-12 * f[0].abs().max(1e-300));
+        }
+    }
+
+    #[test]
+    fn hertz_elastic_force() {
+        // F = (4/3) E* sqrt(R*) delta^{3/2} at zero normal velocity
+        let law = ContactLaw::hertz(1e7, 0.3, 0.7, 0.4);
+        let c = ContactInput { n: [0.0, 0.0, 1.0], delta: 1e-6, v_rel: [0.0; 3], sqrt_m: 0.01, r_eff: 1.5e-3 };
+        let f = contact_force(&law, &c, &mut [0.0; 3], 1e-6);
+        let e_star = 1e7 / (2.0 * (1.0 - 0.09));
+        let expected = 4.0 / 3.0 * e_star * (1.5e-3f64).sqrt() * 1e-9;
+        assert!((-f[2] / expected - 1.0).abs() < 1e-12);
+    }
+}

@@ -226,11 +226,7 @@ impl FluidForces {
                         };
                     }
                 }
-                let u = [
-                    field.velocity(z) + fluct[i][0] - p.vx[a],
-                    fluct[i][1] - p.vy[a],
-                    fluct[i][2] - p.vz[a],
-                ];
+                let u = [field.velocity(z) + fluct[i][0] - p.vx[a], fluct[i][1] - p.vy[a], fluct[i][2] - p.vz[a]];
                 let d = 2.0 * p.radius[a];
                 let speed = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
                 re[i] = speed * d / nu_f;

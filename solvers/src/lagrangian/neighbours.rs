@@ -270,3 +270,73 @@ impl NeighbourList {
         self.builds += 1;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        #[test]
+        fn lists_every_close_pair_once(
+            pts in proptest::collection::vec((0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0), 2..120),
+            periodic_y in any::<bool>(),
+        ) {
+            // brute force over all pairs and images against the cell-list build
+            let (l, r, skin) = (1.0, 0.04, 0.02);
+            let bx = Box3 { length: [l, l, 0.0], periodic: [true, periodic_y, false] };
+            let mut p = Particles::default();
+            for &(x, y, z) in &pts {
+                p.push([x, y, z], [0.0; 3], [0.0; 3], r, 1000.0, false);
+            }
+            let mut list = NeighbourList::new(skin);
+            list.build(&mut p, &bx);
+            let mut expected = Vec::new();
+            for a in 0..p.len() {
+                for b in a + 1..p.len() {
+                    let mut d2 = 0.0;
+                    for (k, c) in [&p.x, &p.y, &p.z].into_iter().enumerate() {
+                        let d = c[b] - c[a];
+                        let d = d + bx.image_shift(k, d);
+                        d2 += d * d;
+                    }
+                    if d2 < (2.0 * r + skin) * (2.0 * r + skin) {
+                        expected.push((a as u32, b as u32));
+                    }
+                }
+            }
+            let mut got: Vec<(u32, u32)> = list.i.iter().zip(&list.j).map(|(a, b)| (*a, *b)).collect();
+            got.sort_unstable();
+            prop_assert_eq!(got, expected);
+            // the reverse index lists each pair once under its j
+            let mut seen = vec![0; list.len()];
+            for b in 0..p.len() {
+                for &q in &list.rev[list.rev_start[b]..list.rev_start[b + 1]] {
+                    prop_assert_eq!(list.j[q as usize] as usize, b);
+                    seen[q as usize] += 1;
+                }
+            }
+            prop_assert!(seen.iter().all(|&c| c == 1));
+        }
+    }
+
+    #[test]
+    fn history_survives_a_rebuild() {
+        let bx = Box3 { length: [1.0, 1.0, 0.0], periodic: [true, true, false] };
+        let mut p = Particles::default();
+        p.push([0.99, 0.5, 0.5], [0.0; 3], [0.0; 3], 0.02, 1000.0, false);
+        p.push([0.02, 0.5, 0.5], [0.0; 3], [0.0; 3], 0.02, 1000.0, false);
+        let mut list = NeighbourList::new(0.01);
+        list.build(&mut p, &bx);
+        assert_eq!(list.len(), 1);
+        assert!((list.shift[0][0] - 1.0).abs() < 1e-15 || (list.shift[0][0] + 1.0).abs() < 1e-15);
+        list.hist[0] = [1e-5, 2e-5, 0.0];
+        // particle 0 crosses the periodic boundary before the next build
+        p.x[0] = 1.001;
+        list.build(&mut p, &bx);
+        assert_eq!(list.len(), 1);
+        assert_eq!(list.hist[0], [1e-5, 2e-5, 0.0]);
+        assert!(p.x[0] < 0.01);
+    }
+}

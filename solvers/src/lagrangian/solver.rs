@@ -127,7 +127,9 @@ impl<'a> Lagrangian<'a> {
         let mat = Material { d, rho_p };
         let p = setup::initial_particles(&cfg, &mat, scene.seed, &file)?;
         let law = match s.contact {
-            ContactModel::Linear => ContactLaw::linear(s.stiffness, s.stiffness * s.tangential_ratio, s.restitution, s.friction),
+            ContactModel::Linear => {
+                ContactLaw::linear(s.stiffness, s.stiffness * s.tangential_ratio, s.restitution, s.friction)
+            }
             ContactModel::Hertz => ContactLaw::hertz(s.young, s.poisson, s.restitution, s.friction),
         };
         let m = rho_p * setup::sphere_volume(d);
@@ -385,14 +387,21 @@ impl<'a> Lagrangian<'a> {
             }
             col.reynolds_stress(&mut self.tau_t);
             let zc = col.grid().centres();
+            // bed surface: the highest cell at least half as packed as the densest one (the
+            // nominal surface before any particle is there)
+            let dense = self.field.phi.iter().fold(0.0f64, |a, &b| a.max(b));
+            let bed = match self.field.phi.iter().rposition(|&f| dense > 0.1 && f >= 0.5 * dense) {
+                Some(c) => zc[c],
+                None => self.bed_surface,
+            };
             let (mut sum, mut count) = (0.0, 0usize);
             for (&z, &u) in zc.iter().zip(col.velocity()) {
-                if z > self.bed_surface {
+                if z > bed {
                     sum += u;
                     count += 1;
                 }
             }
-            self.field.scales.depth = col.grid().height() - self.bed_surface;
+            self.field.scales.depth = col.grid().height() - bed;
             self.field.scales.bulk_velocity = if count > 0 { sum / count as f64 } else { 0.0 };
         }
         self.check()?;
@@ -430,7 +439,8 @@ impl<'a> Lagrangian<'a> {
     /// DEM steps up to and including the next fluid update; `Some` when the run is over.
     pub fn advance(&mut self) -> Option<Ending> {
         let s = &self.cfg.settings;
-        let (every, fluid, end, max_steps, stop) = (self.fluid_every, s.fluid, s.end_time, s.max_steps, s.stop_when_steady);
+        let (every, fluid, end, max_steps, stop) =
+            (self.fluid_every, s.fluid, s.end_time, s.max_steps, s.stop_when_steady);
         loop {
             if self.steps >= max_steps {
                 return Some(Ending::MaxSteps);

@@ -100,7 +100,10 @@ impl Stats {
         let pairs = [(0, 0), (1, 1), (2, 2), (0, 2)];
         let vv: [Vec<f64>; 4] = std::array::from_fn(|k| {
             let (a, b) = pairs[k];
-            (0..n).map(|c| if self.vol[c] > 0.0 { raw[k][c] - v[a][c] * v[b][c] } else { 0.0 }).map(|x| if k < 3 { x.max(0.0) } else { x }).collect()
+            (0..n)
+                .map(|c| if self.vol[c] > 0.0 { raw[k][c] - v[a][c] * v[b][c] } else { 0.0 })
+                .map(|x| if k < 3 { x.max(0.0) } else { x })
+                .collect()
         });
         let temperature = (0..n).map(|c| (vv[0][c] + vv[1][c] + vv[2][c]) / 3.0).collect();
         let phi: Vec<f64> = self.vol.iter().map(|w| w / ns / cell_volume).collect();
