@@ -3,7 +3,7 @@
 //!
 //! With the cuboid weighting function of eq 8 over the whole periodic cell and one fluid
 //! cell in z, the volume fraction of cell c is phi_c = sum_p V_pc / (A dz) and the
-//! solid-phase average of a particle quantity g is <g>_c = sum_p V_pc g_p / sum_p V_pc
+//! solid-phase average of a particle quantity g is `<g>_c = sum_p V_pc g_p / sum_p V_pc`
 //! (eq A1), with V_pc the exact volume of the slice of sphere p inside cell c (Hill et al.;
 //! from the spherical-cap volume pi s^2 (3R - s) / 3).
 //!

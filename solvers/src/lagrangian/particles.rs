@@ -107,7 +107,7 @@ impl Particles {
             .sum()
     }
 
-    /// Granular temperature of the mobile particles, <|v - <v>|^2> / 3 (m^2/s^2).
+    /// Granular temperature of the mobile particles, `<|v - <v>|^2> / 3` (m^2/s^2).
     pub fn temperature(&self) -> f64 {
         let n = self.n_mobile as f64;
         if self.n_mobile == 0 {

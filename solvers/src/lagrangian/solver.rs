@@ -302,7 +302,7 @@ impl<'a> Lagrangian<'a> {
         // deposit without the streamwise pull: the bed forms at rest
         self.dem.body[0] = 0.0;
         for k in 0..n_steps {
-            let update = k % every == 0 && self.cfg.settings.fluid != FluidMode::Off;
+            let update = k.checked_rem(every) == Some(0) && self.cfg.settings.fluid != FluidMode::Off;
             self.dem_step(update);
             if update {
                 self.average();
@@ -436,37 +436,44 @@ impl<'a> Lagrangian<'a> {
         }
     }
 
+    /// One DEM step of the flow, with the fluid update when it is due. `Ok(true)` when the
+    /// fluid was updated, `Err` with the ending when the run is over.
+    pub fn step(&mut self) -> Result<bool, Ending> {
+        let s = &self.cfg.settings;
+        let (every, fluid) = (self.fluid_every, s.fluid);
+        if self.steps >= s.max_steps {
+            return Err(Ending::MaxSteps);
+        }
+        if self.time >= s.end_time {
+            return Err(Ending::EndTime);
+        }
+        let update = self.steps.checked_rem(every) == Some(0);
+        self.dem_step(update && fluid != FluidMode::Off);
+        if update {
+            let r = if fluid == FluidMode::Off { self.check() } else { self.fluid_update() };
+            r.map_err(Ending::Unstable)?;
+            if self.vtk_dir.is_some() && self.time >= self.next_vtk {
+                self.write_vtk();
+                self.next_vtk += self.cfg.settings.vtk_period;
+            }
+        }
+        self.steps += 1;
+        self.time = self.steps as f64 * self.dem.dt;
+        Ok(update)
+    }
+
     /// DEM steps up to and including the next fluid update; `Some` when the run is over.
     pub fn advance(&mut self) -> Option<Ending> {
-        let s = &self.cfg.settings;
-        let (every, fluid, end, max_steps, stop) =
-            (self.fluid_every, s.fluid, s.end_time, s.max_steps, s.stop_when_steady);
         loop {
-            if self.steps >= max_steps {
-                return Some(Ending::MaxSteps);
-            }
-            if self.time >= end {
-                return Some(Ending::EndTime);
-            }
-            let update = self.steps % every == 0;
-            self.dem_step(update && fluid != FluidMode::Off);
-            if update {
-                let r = if fluid == FluidMode::Off { self.check() } else { self.fluid_update() };
-                if let Err(b) = r {
-                    return Some(Ending::Unstable(b));
+            match self.step() {
+                Err(e) => return Some(e),
+                Ok(false) => {}
+                Ok(true) => {
+                    if self.cfg.settings.stop_when_steady && self.steady.is_steady() {
+                        return Some(Ending::Steady);
+                    }
+                    return None;
                 }
-                if self.vtk_dir.is_some() && self.time >= self.next_vtk {
-                    self.write_vtk();
-                    self.next_vtk += self.cfg.settings.vtk_period;
-                }
-            }
-            self.steps += 1;
-            self.time = self.steps as f64 * self.dem.dt;
-            if update {
-                if stop && self.steady.is_steady() {
-                    return Some(Ending::Steady);
-                }
-                return None;
             }
         }
     }

@@ -2,11 +2,16 @@
 //!
 //! Each sample (one per fluid update after `solver.stats_start`) adds the slice sums of
 //! [`super::averaging::CellSums`] and the fluid fields. The averages are taken over space
-//! and time together: phi = <sum V_pc>_t / (A dz), <v> = <sum V_pc v>_t / <sum V_pc>_t,
-//! the fluctuations <v'_i v'_j> = <sum V_pc v_i v_j>_t / <sum V_pc>_t - <v_i><v_j>, the
-//! granular temperature T = (<v'_x^2> + <v'_y^2> + <v'_z^2>)/3 (Chassagne et al. 2023
-//! section 2.2, the kinetic part of eq 2.27), and the transport-rate density
-//! q_s = phi <v_x> (Maurin 2015 eq 20).
+//! and time together:
+//!
+//! ```text
+//! phi = <sum V_pc>_t / (A dz),   <v> = <sum V_pc v>_t / <sum V_pc>_t,
+//! <v'_i v'_j> = <sum V_pc v_i v_j>_t / <sum V_pc>_t - <v_i><v_j>,
+//! T = (<v'_x^2> + <v'_y^2> + <v'_z^2>) / 3,    q_s = phi <v_x>
+//! ```
+//!
+//! (the kinetic part of the granular stress, Chassagne et al. 2023 eq 2.27, and the
+//! transport-rate density of Maurin 2015 eq 20).
 
 use super::averaging::CellSums;
 
