@@ -115,9 +115,10 @@ mod tests {
         #[test]
         fn slices_add_up_to_the_sphere(zc in 0.01f64..1.0, r in 1e-3f64..0.05, dz in 1e-4f64..0.05) {
             // whatever the cut, the slice volumes of a sphere inside the column sum to its volume
+            let zc = zc.max(r);
             let n = ((zc + r) / dz).ceil() as usize + 2;
             let mut p = Particles::default();
-            p.push([0.0, 0.0, zc.max(r)], [1.0, 0.0, 0.0], [0.0; 3], r, 1000.0, false);
+            p.push([0.0, 0.0, zc], [1.0, 0.0, 0.0], [0.0; 3], r, 1000.0, false);
             let mut s = CellSums::new(n);
             s.accumulate(&p, dz, &[0.0], &[0.0]);
             let total: f64 = s.vol.iter().sum();

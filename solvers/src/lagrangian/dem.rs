@@ -75,6 +75,12 @@ pub(crate) fn par_ranges<F: Fn(Range<usize>) + Sync + Send>(n: usize, f: F) {
     (0..chunks).into_par_iter().for_each(|c| f(c * CHUNK..((c + 1) * CHUNK).min(n)));
 }
 
+/// As [`par_ranges`], and whether `f` returned true for any range (every range runs).
+pub(crate) fn par_ranges_any<F: Fn(Range<usize>) -> bool + Sync + Send>(n: usize, f: F) -> bool {
+    let chunks = n.div_ceil(CHUNK);
+    (0..chunks).into_par_iter().map(|c| f(c * CHUNK..((c + 1) * CHUNK).min(n))).reduce(|| false, |a, b| a || b)
+}
+
 /// The DEM state and its parameters.
 #[derive(Clone, Debug)]
 pub struct Dem {
@@ -104,6 +110,9 @@ pub struct Dem {
     pub wall_hist: Vec<[[f64; 3]; MAX_WALLS]>,
     pair_f: Vec<[f64; 3]>,
     pair_t: Vec<[f64; 3]>,
+    /// a particle moved more than half the skin since the last build (set by the
+    /// integration, so the check costs no extra pass)
+    rebuild_due: bool,
 }
 
 impl Dem {
@@ -125,6 +134,7 @@ impl Dem {
             wall_hist: vec![[[0.0; 3]; MAX_WALLS]; nm],
             pair_f: Vec::new(),
             pair_t: Vec::new(),
+            rebuild_due: true,
         }
     }
 
@@ -139,15 +149,16 @@ impl Dem {
         self.wall_hist.clear();
         self.wall_hist.resize(nm, [[0.0; 3]; MAX_WALLS]);
         self.list.forget();
+        self.rebuild_due = true;
     }
 
     /// Advance one time step.
     pub fn step(&mut self) {
-        if self.list.needs_rebuild(&self.p) {
+        if self.rebuild_due || self.list.x0.len() != self.p.len() {
             self.list.build(&mut self.p, &self.bx);
         }
         self.pair_forces();
-        self.integrate();
+        self.rebuild_due = self.integrate();
         self.time += self.dt;
         self.steps += 1;
     }
@@ -193,7 +204,9 @@ impl Dem {
         });
     }
 
-    fn integrate(&mut self) {
+    /// Leapfrog update of the mobile particles; true when one of them moved more than half
+    /// the skin since the last neighbour build.
+    fn integrate(&mut self) -> bool {
         let nm = self.p.n_mobile;
         let dt = self.dt;
         let body = self.body;
@@ -215,7 +228,9 @@ impl Dem {
         let wy = Disjoint::new(&mut p.wy[..nm]);
         let wz = Disjoint::new(&mut p.wz[..nm]);
         let wh = Disjoint::new(&mut self.wall_hist);
-        par_ranges(nm, |r| {
+        let x0 = &l.x0;
+        let lim = 0.25 * l.skin * l.skin;
+        par_ranges_any(nm, |r| {
             let o = r.start;
             // SAFETY: par_ranges visits disjoint ranges.
             let (x, y, z, vx, vy, vz, wx, wy, wz, wh) = unsafe {
@@ -232,6 +247,7 @@ impl Dem {
                     wh.chunk(r.clone()),
                 )
             };
+            let mut moved = false;
             for a in r {
                 let k = a - o;
                 let ra = radius[a];
@@ -283,8 +299,11 @@ impl Dem {
                 x[k] += vx[k] * dt;
                 y[k] += vy[k] * dt;
                 z[k] += vz[k] * dt;
+                let a0 = x0[a];
+                moved |= (x[k] - a0[0]).powi(2) + (y[k] - a0[1]).powi(2) + (z[k] - a0[2]).powi(2) > lim;
             }
-        });
+            moved
+        })
     }
 
     /// Elastic energy stored in the normal springs of the linear law (J), for energy
