@@ -48,10 +48,11 @@ impl CellSums {
     }
 
     /// Accumulate every particle (mobile and fixed; fixed ones have zero velocity) on a
-    /// uniform grid of `n` cells of height `dz` from z = 0, with the drag coefficients `k`
-    /// and streamwise slips `urx` of the last drag evaluation. Parts of spheres outside
-    /// the column are dropped. Sequential, in particle order: bit-reproducible.
-    pub fn accumulate(&mut self, p: &Particles, dz: f64, k: &[f64], urx: &[f64]) {
+    /// uniform grid of `n` cells of height `dz` from z = `base`, with the drag
+    /// coefficients `k` and streamwise slips `urx` of the last drag evaluation. Parts of
+    /// spheres outside the column are dropped (their drag share too). Sequential, in
+    /// particle order: bit-reproducible.
+    pub fn accumulate(&mut self, p: &Particles, base: f64, dz: f64, k: &[f64], urx: &[f64]) {
         for v in [&mut self.vol, &mut self.drag, &mut self.coef]
             .into_iter()
             .chain(self.v.iter_mut())
@@ -62,7 +63,7 @@ impl CellSums {
         let n = self.vol.len();
         let top = n as f64 * dz;
         for a in 0..p.len() {
-            let (zc, r) = (p.z[a], p.radius[a]);
+            let (zc, r) = (p.z[a] - base, p.radius[a]);
             if zc + r <= 0.0 || zc - r >= top {
                 continue;
             }
@@ -120,7 +121,7 @@ mod tests {
             let mut p = Particles::default();
             p.push([0.0, 0.0, zc], [1.0, 0.0, 0.0], [0.0; 3], r, 1000.0, false);
             let mut s = CellSums::new(n);
-            s.accumulate(&p, dz, &[0.0], &[0.0]);
+            s.accumulate(&p, 0.0, dz, &[0.0], &[0.0]);
             let total: f64 = s.vol.iter().sum();
             let v = 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
             prop_assert!((total / v - 1.0).abs() < 1e-9);
@@ -142,7 +143,7 @@ mod tests {
             }
             let urx: Vec<f64> = k.iter().enumerate().map(|(i, _)| slip[i]).collect();
             let mut s = CellSums::new(n);
-            s.accumulate(&p, dz, &k, &urx);
+            s.accumulate(&p, 0.0, dz, &k, &urx);
             let (mut phi, mut up, mut beta) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
             let uf = vec![1.0; n];
             s.coupling(area * dz, &uf, &mut phi, &mut up, &mut beta);

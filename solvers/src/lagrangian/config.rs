@@ -104,8 +104,8 @@ pub struct Domain {
     /// thickness of the fixed rough layer, in particle diameters
     #[serde(default = "default_rough_layer")]
     pub rough_layer: f64,
-    /// clear water above the bed at rest (m); the free surface is at
-    /// rough layer + bed_height + water_depth
+    /// clear water above the bed at rest (m); the fluid column spans bed_height +
+    /// water_depth from the top of the rough layer (z = rough_layer d)
     #[serde(default)]
     pub water_depth: f64,
     /// cells of the fluid column
@@ -307,7 +307,7 @@ impl Config {
             }
         }
         if s.fluid != FluidMode::Off && dm.bottom != Bottom::Periodic {
-            let h = self.column_height(d);
+            let h = self.column_height();
             if h <= 0.0 {
                 return Err(key("domain.water_depth", "the fluid column height must be > 0".into()));
             }
@@ -333,7 +333,8 @@ impl Config {
         Ok(())
     }
 
-    /// Height of the rough layer (m): `rough_layer` d with a rough bottom, else 0.
+    /// Height of the rough layer (m): `rough_layer` d with a rough bottom, else 0. The
+    /// fluid column starts there.
     pub fn rough_height(&self, d: f64) -> f64 {
         if self.domain.bottom == Bottom::Rough {
             self.domain.rough_layer * d
@@ -342,13 +343,14 @@ impl Config {
         }
     }
 
-    /// Nominal bed surface at rest (m): rough layer + bed_height.
-    pub fn bed_surface(&self, d: f64) -> f64 {
-        self.rough_height(d) + self.domain.bed_height
+    /// Nominal bed surface at rest above the column bottom (m): bed_height.
+    pub fn bed_surface(&self) -> f64 {
+        self.domain.bed_height
     }
 
-    /// Height of the fluid column (m): bed surface + water depth.
-    pub fn column_height(&self, d: f64) -> f64 {
-        self.bed_surface(d) + self.domain.water_depth
+    /// Height of the fluid column (m): bed_height + water_depth, from the top of the rough
+    /// layer (Chassagne 2023 figure 1: H_f = H_bed + h_w above the fixed particles).
+    pub fn column_height(&self) -> f64 {
+        self.domain.bed_height + self.domain.water_depth
     }
 }

@@ -9,7 +9,7 @@
 //!
 //! written F_D = k_p u_r with k_p = (pi/8) rho_f nu_f d C_D(Re*) Re_p f, finite as
 //! |u_r| -> 0. u_f(z) is the column velocity interpolated linearly between cell centres
-//! (0 at the wall, the top cell's value above the last centre); phi is the volume
+//! (0 at the column bottom and below it, the top cell's value above the last centre); phi is the volume
 //! fraction of the cell holding the centre (as Maurin's implementation). Buoyancy is part
 //! of the body force ([`super::setup::body_acceleration`]).
 //!
@@ -30,9 +30,11 @@ use saltus_core::{DragLaw, FlowScales, Fluctuation, Hindrance, ParticleSlip, Tur
 use super::dem::{par_ranges, Disjoint};
 use super::particles::Particles;
 
-/// Fluid fields the particles see, on the column's cells (uniform grid from z = 0).
+/// Fluid fields the particles see, on the column's cells (uniform grid from z = `base`).
 #[derive(Clone, Debug, Default)]
 pub struct FluidField {
+    /// height of the column bottom in particle coordinates (m): the top of the rough layer
+    pub base: f64,
     /// cell height (m)
     pub dz: f64,
     /// streamwise fluid velocity per cell centre (m/s)
@@ -50,9 +52,10 @@ pub struct FluidField {
 }
 
 impl FluidField {
-    /// Fluid at rest over `n` cells of height `dz`.
-    pub fn at_rest(n: usize, dz: f64) -> Self {
+    /// Fluid at rest over `n` cells of height `dz` above `base`.
+    pub fn at_rest(n: usize, dz: f64, base: f64) -> Self {
         Self {
+            base,
             dz,
             u: vec![0.0; n],
             phi: vec![0.0; n],
@@ -66,7 +69,7 @@ impl FluidField {
     /// Cell holding height z (clamped to the column).
     #[inline]
     pub fn cell(&self, z: f64) -> usize {
-        let k = (z / self.dz).floor();
+        let k = ((z - self.base) / self.dz).floor();
         if k <= 0.0 {
             0
         } else {
@@ -74,9 +77,11 @@ impl FluidField {
         }
     }
 
-    /// Fluid velocity at height z, linear between centres, 0 at the wall.
+    /// Fluid velocity at height z, linear between centres, 0 at the column bottom and
+    /// below.
     #[inline]
     pub fn velocity(&self, z: f64) -> f64 {
+        let z = z - self.base;
         let s = z / self.dz - 0.5;
         let n = self.u.len();
         if s <= 0.0 {

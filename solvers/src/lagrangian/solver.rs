@@ -150,7 +150,7 @@ impl<'a> Lagrangian<'a> {
         let height = if s.fluid == FluidMode::Off || cfg.domain.bottom == super::config::Bottom::Periodic {
             1.0
         } else {
-            cfg.column_height(d)
+            cfg.column_height()
         };
         let grid = Grid::uniform(cells, height).map_err(|e| Error::Invalid(format!("{file}: domain.cells: {e}")))?;
         let dz = grid.dz()[0];
@@ -171,7 +171,7 @@ impl<'a> Lagrangian<'a> {
         let fluid_every = ((s.fluid_period / dt).round() as u64).max(1);
         let v = |x: f64| vec![x; cells];
         Ok(Self {
-            field: FluidField::at_rest(cells, dz),
+            field: FluidField::at_rest(cells, dz, cfg.rough_height(d)),
             column,
             viscosity,
             turbulence,
@@ -192,7 +192,7 @@ impl<'a> Lagrangian<'a> {
             settle_steps: 0,
             mat,
             rho_f: scene.fluid.density,
-            bed_surface: cfg.bed_surface(d),
+            bed_surface: cfg.bed_surface(),
             vtk_dir: None,
             vtk_count: 0,
             next_vtk: 0.0,
@@ -251,7 +251,7 @@ impl<'a> Lagrangian<'a> {
     pub fn column(&self) -> Option<&FluidColumn> {
         self.column.as_ref()
     }
-    /// Nominal bed surface (m).
+    /// Nominal bed surface above the column bottom (m).
     pub fn bed_surface(&self) -> f64 {
         self.bed_surface
     }
@@ -277,7 +277,7 @@ impl<'a> Lagrangian<'a> {
     /// Average the particles on the cells and refresh phi (and the hindrance convention)
     /// the particles see.
     fn average(&mut self) {
-        self.sums.accumulate(&self.dem.p, self.field.dz, &self.forces.k, &self.forces.urx);
+        self.sums.accumulate(&self.dem.p, self.field.base, self.field.dz, &self.forces.k, &self.forces.urx);
         let u_f: &[f64] = match &self.column {
             Some(c) => c.velocity(),
             None => &self.field.u,
