@@ -217,3 +217,26 @@ fn coupled_run_conserves_particles_and_transfers_momentum_consistently() {
     let col = m.column().expect("coupled");
     assert!(col.velocity().iter().all(|u| u.is_finite() && *u >= 0.0));
 }
+
+#[test]
+fn hertz_collision_restitution_is_close_to_e() {
+    // the restitution-matched damping 2 sqrt(5/6) beta sqrt(S_n m*) of the Hertz law gives
+    // e to a few per cent (not exactly: the damping is not linear); checked within 3 %
+    for e in [0.5, 0.7, 0.9] {
+        let s = scene(
+            "verification/dem_binary_collision.toml",
+            &[
+                &format!("solver.restitution={e}"),
+                "solver.contact=\"hertz\"",
+                "solver.young=1e7",
+                "solver.poisson=0.3",
+                "solver.dt_safety=0.01",
+            ],
+        );
+        let mut m = model(&s);
+        run_to_end(&mut m);
+        let p = &m.dem.p;
+        let measured = (p.vx[1] - p.vx[0]) / 0.2;
+        assert!((measured / e - 1.0).abs() < 0.03, "e = {e}: measured {measured}");
+    }
+}

@@ -52,6 +52,19 @@ pub enum FluidMode {
     Off,
 }
 
+/// Where the free surface is put.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Surface {
+    /// `water_depth` above the surface of the deposited bed, measured after the
+    /// deposition (the level where the packing falls to half its bulk value): the water
+    /// depth of the Shields number is the one asked whatever the packing of the deposit
+    #[default]
+    Deposit,
+    /// `bed_height + water_depth` above the top of the rough layer
+    Nominal,
+}
+
 /// One particle of `initial = "list"`.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -108,9 +121,13 @@ pub struct Domain {
     /// water_depth from the top of the rough layer (z = rough_layer d)
     #[serde(default)]
     pub water_depth: f64,
-    /// cells of the fluid column
+    /// cells of the fluid column (its nominal height bed_height + water_depth; with
+    /// `surface = "deposit"` the cell size is kept and the count follows the column)
     #[serde(default = "default_cells")]
     pub cells: usize,
+    /// where the free surface is put (deposited beds)
+    #[serde(default)]
+    pub surface: Surface,
     /// volume fraction of the gas (initial = "gas")
     #[serde(default)]
     pub gas_phi: f64,

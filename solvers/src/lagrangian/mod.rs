@@ -13,7 +13,7 @@ pub mod solver;
 pub mod stats;
 pub mod vtk;
 
-pub use config::{Bottom, Config, Domain, FluidMode, Initial, Settings};
+pub use config::{Bottom, Config, Domain, FluidMode, Initial, Settings, Surface};
 pub use contact::{ContactLaw, ContactModel};
 pub use dem::{Dem, Wall};
 pub use neighbours::NeighbourList;

@@ -143,12 +143,13 @@ pub fn report(scene: &Scene, m: &Lagrangian<'_>, ending: &Ending, wall: f64, flo
         shields_turbulent: (buoyant > 0.0).then(|| tau_t_max / buoyant),
     };
     let text = format!(
-        "{}: {} after {:.3} s of flow ({} DEM steps of {:.3e} s, {} mobile particles, {} samples) in {:.1} s wall time ({:.2e} particle-steps/s); qs* = {:.4} (qs = {:.4e} m^2/s), Shields {:.3} (turbulent theta* {:.3}), bed surface {:.4} m, transport layer {:.4} m",
+        "{}: {} after {:.3} s of flow ({} DEM steps of {:.3e} s, {} neighbour-list builds, {} mobile particles, {} samples) in {:.1} s wall time ({:.2e} particle-steps/s); qs* = {:.4} (qs = {:.4e} m^2/s), Shields {:.3} (turbulent theta* {:.3}), bed surface {:.4} m, transport layer {:.4} m",
         scene.meta.name,
         if summary.steady { "steady" } else { ending_name },
         summary.sim_time_s,
         summary.steps,
         m.dt(),
+        m.dem.list.builds,
         mobile,
         m.stats().samples,
         wall,

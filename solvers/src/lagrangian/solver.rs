@@ -93,6 +93,7 @@ pub struct Lagrangian<'a> {
     next_vtk: f64,
     seed: u64,
     zero_faces: Vec<f64>,
+    column_params: Option<ColumnParams>,
 }
 
 impl<'a> Lagrangian<'a> {
@@ -154,6 +155,7 @@ impl<'a> Lagrangian<'a> {
         };
         let grid = Grid::uniform(cells, height).map_err(|e| Error::Invalid(format!("{file}: domain.cells: {e}")))?;
         let dz = grid.dz()[0];
+        let mut column_params = None;
         let column = if s.fluid == FluidMode::Coupled {
             let params = ColumnParams {
                 density: scene.fluid.density,
@@ -164,6 +166,7 @@ impl<'a> Lagrangian<'a> {
                 top: TopBoundary::FreeSurface,
                 relaxation: 0.5,
             };
+            column_params = Some(params);
             Some(FluidColumn::new(grid, params)?)
         } else {
             None
@@ -198,6 +201,7 @@ impl<'a> Lagrangian<'a> {
             next_vtk: 0.0,
             seed: scene.seed,
             zero_faces: vec![0.0; cells + 1],
+            column_params,
             dem,
             forces,
             cfg,
@@ -323,11 +327,73 @@ impl<'a> Lagrangian<'a> {
             }
         }
         self.dem.reset_topology();
+        if self.cfg.domain.surface == super::config::Surface::Deposit && self.cfg.settings.fluid != FluidMode::Off {
+            self.fit_column_to_deposit()?;
+        }
         let n = self.dem.p.len();
         let fallback = self.forces.fallback_period;
         self.forces = FluidForces::new(n, self.forces_seed(), self.forces.rho_f, self.forces.nu_f, self.mat.rho_p);
         self.forces.fallback_period = fallback;
         self.dem.time = 0.0;
+        Ok(())
+    }
+
+    /// Surface of the deposit above the column bottom (m): the highest level where the
+    /// packing, averaged over one diameter, is half its largest such average.
+    pub fn deposit_surface(&mut self) -> f64 {
+        let d = self.mat.d;
+        let dz = self.field.dz;
+        let n = self.sums.vol.len();
+        self.sums.accumulate(&self.dem.p, self.field.base, dz, &self.forces.k, &self.forces.urx);
+        let w = ((d / dz).round() as usize).max(1);
+        let mut best: f64 = 0.0;
+        let mut level = None;
+        let mut mean = vec![0.0; n];
+        for c in 0..n {
+            let (lo, hi) = (c.saturating_sub(w / 2), (c + w / 2 + 1).min(n));
+            mean[c] = self.sums.vol[lo..hi].iter().sum::<f64>() / ((hi - lo) as f64 * self.cell_volume);
+            best = best.max(mean[c]);
+        }
+        for c in (0..n).rev() {
+            if mean[c] >= 0.5 * best {
+                level = Some((c as f64 + 0.5) * dz);
+                break;
+            }
+        }
+        level.unwrap_or(self.bed_surface)
+    }
+
+    /// Put the free surface `water_depth` above the deposit: a new column of the same
+    /// cell size (before the flow starts; it allocates).
+    fn fit_column_to_deposit(&mut self) -> Result<(), Breakdown> {
+        let surface = self.deposit_surface();
+        let dz = self.field.dz;
+        let height = surface + self.cfg.domain.water_depth;
+        let cells = ((height / dz).round() as usize).max(2);
+        let fail = |reason: String| Breakdown {
+            time: 0.0,
+            location: "fluid column".into(),
+            field: "height".into(),
+            value: height,
+            reason,
+        };
+        let grid = Grid::uniform(cells, height).map_err(|e| fail(e.to_string()))?;
+        let dz = grid.dz()[0];
+        if let Some(params) = self.column_params {
+            self.column = Some(FluidColumn::new(grid, params).map_err(|e| fail(e.to_string()))?);
+        }
+        let base = self.field.base;
+        self.field = FluidField::at_rest(cells, dz, base);
+        self.sums = CellSums::new(cells);
+        let v = |x: f64| vec![x; cells];
+        self.phi = v(0.0);
+        self.u_p = v(0.0);
+        self.beta = v(0.0);
+        self.tau_t = v(0.0);
+        self.stats = Stats::new(cells);
+        self.zero_faces = vec![0.0; cells + 1];
+        self.cell_volume = self.cfg.domain.length * self.cfg.domain.width * dz;
+        self.bed_surface = surface;
         Ok(())
     }
 
