@@ -348,11 +348,14 @@ impl<'a> Lagrangian<'a> {
         let w = ((d / dz).round() as usize).max(1);
         let mut best: f64 = 0.0;
         let mut level = None;
-        let mut mean = vec![0.0; n];
-        for c in 0..n {
-            let (lo, hi) = (c.saturating_sub(w / 2), (c + w / 2 + 1).min(n));
-            mean[c] = self.sums.vol[lo..hi].iter().sum::<f64>() / ((hi - lo) as f64 * self.cell_volume);
-            best = best.max(mean[c]);
+        let mean: Vec<f64> = (0..n)
+            .map(|c| {
+                let (lo, hi) = (c.saturating_sub(w / 2), (c + w / 2 + 1).min(n));
+                self.sums.vol[lo..hi].iter().sum::<f64>() / ((hi - lo) as f64 * self.cell_volume)
+            })
+            .collect();
+        for &m in &mean {
+            best = best.max(m);
         }
         for c in (0..n).rev() {
             if mean[c] >= 0.5 * best {
