@@ -16,6 +16,9 @@
 //! The closures are called once per chunk of particles through their batch methods
 //! (C_D over Re*, f over (phi, Re_p)); the hindrance's Reynolds convention is taken per
 //! cell as Re* = c(phi) Re_p with c = `drag_reynolds(phi, 1)`, checked linear at start-up.
+//! A hindrance found independent of Re_p at start-up (Richardson-Zaki) is evaluated per
+//! cell at each fluid update instead of per particle and step (the particle's phi is its
+//! cell's anyway).
 //!
 //! Fluctuations (`drw` now, any [`saltus_core::Fluctuation`]): each particle carries its
 //! own draw and the time left before the next one, and its own random stream
@@ -47,6 +50,9 @@ pub struct FluidField {
     pub nu_t: Vec<f64>,
     /// Re* / Re_p per cell (hindrance convention)
     pub re_ratio: Vec<f64>,
+    /// hindrance factor per cell, when the hindrance does not depend on Re_p (then the
+    /// particles read it instead of evaluating the closure); empty otherwise
+    pub hindrance: Vec<f64>,
     /// water depth and bulk velocity for the eddy turnover time
     pub scales: FlowScales,
 }
@@ -62,6 +68,7 @@ impl FluidField {
             reynolds: vec![0.0; n],
             nu_t: vec![0.0; n],
             re_ratio: vec![1.0; n],
+            hindrance: Vec::new(),
             scales: FlowScales::default(),
         }
     }
@@ -69,7 +76,8 @@ impl FluidField {
     /// Cell holding height z (clamped to the column).
     #[inline]
     pub fn cell(&self, z: f64) -> usize {
-        let k = ((z - self.base) / self.dz).floor();
+        // truncation is the floor for positive values and avoids a libm call per particle
+        let k = (z - self.base) / self.dz;
         if k <= 0.0 {
             0
         } else {
@@ -88,7 +96,7 @@ impl FluidField {
             let w = (z / (0.5 * self.dz)).clamp(0.0, 1.0);
             return w * self.u[0];
         }
-        let k = s.floor() as usize;
+        let k = s as usize; // s > 0 here: truncation is the floor
         if k + 1 >= n {
             return self.u[n - 1];
         }
@@ -241,7 +249,13 @@ impl FluidForces {
             }
             let n = r.len();
             models.drag.cd_batch(&re_star[..n], &mut cd[..n]);
-            models.hindrance.factor_batch(&phi_p[..n], &re[..n], &mut hind[..n]);
+            if field.hindrance.is_empty() {
+                models.hindrance.factor_batch(&phi_p[..n], &re[..n], &mut hind[..n]);
+            } else {
+                for (h, a) in hind[..n].iter_mut().zip(r.clone()) {
+                    *h = field.hindrance[field.cell(p.z[a])];
+                }
+            }
             // SAFETY: disjoint ranges; only mobile particles have output slots.
             let m_end = r.end.min(nm);
             let (ox, oy, oz) = if o < m_end {

@@ -94,6 +94,7 @@ pub struct Lagrangian<'a> {
     seed: u64,
     zero_faces: Vec<f64>,
     column_params: Option<ColumnParams>,
+    re_free_hindrance: bool,
 }
 
 impl<'a> Lagrangian<'a> {
@@ -122,6 +123,11 @@ impl<'a> Lagrangian<'a> {
                 )));
             }
         }
+        // a hindrance that does not depend on Re_p is tabulated per cell
+        let re_free = [0.05, 0.3, 0.55].iter().all(|&phi| {
+            let f0 = hindrance.factor(phi, 1e-3);
+            [1.0, 1e3, 1e5].iter().all(|&re| hindrance.factor(phi, re) == f0)
+        });
         let s = &cfg.settings;
         let d = scene.particles.diameter;
         let rho_p = scene.particles.density;
@@ -181,6 +187,7 @@ impl<'a> Lagrangian<'a> {
             drag,
             hindrance,
             fluctuation,
+            re_free_hindrance: re_free,
             sums: CellSums::new(cells),
             phi: v(0.0),
             u_p: v(0.0),
@@ -290,6 +297,12 @@ impl<'a> Lagrangian<'a> {
         for (c, &phi) in self.phi.iter().enumerate() {
             self.field.phi[c] = phi.min(0.99);
             self.field.re_ratio[c] = self.hindrance.drag_reynolds(phi.min(0.99), 1.0);
+        }
+        if self.re_free_hindrance {
+            let n = self.field.phi.len();
+            self.field.hindrance.resize(n, 1.0);
+            // Re_p does not matter for such a closure
+            self.hindrance.factor_batch(&self.field.phi, &self.zero_faces[..n], &mut self.field.hindrance);
         }
     }
 
