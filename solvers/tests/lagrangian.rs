@@ -240,3 +240,42 @@ fn hertz_collision_restitution_is_close_to_e() {
         assert!((measured / e - 1.0).abs() < 0.03, "e = {e}: measured {measured}");
     }
 }
+
+#[test]
+fn bad_keys_are_refused_with_file_key_and_range() {
+    saltus_closures::link();
+    for (set, key) in [
+        ("solver.restitution=1.5", "solver.restitution"),
+        ("domain.length=0.001", "domain.length"),
+        ("solver.dt_safety=0.9", "solver.dt_safety"),
+        ("domain.bed_height=-1.0", "domain.bed_height"),
+        ("solver.stifness=1.0", "solver.stifness"),
+        ("domain.bottom=\"sand\"", "domain.bottom"),
+    ] {
+        let s = Scene::from_file_with(case("chassagne2023/dem_case01.toml"), &[set.to_string()]);
+        let msg = match s {
+            Err(e) => e.to_string(),
+            Ok(s) => Config::from_scene(&s).err().map(|e| e.to_string()).unwrap_or_default(),
+        };
+        assert!(msg.contains("dem_case01.toml") && msg.contains(key), "{set}: {msg}");
+    }
+}
+
+#[test]
+fn a_run_that_breaks_down_names_time_particle_and_field() {
+    let s = scene("verification/dem_settling.toml", &[]);
+    let mut m = model(&s);
+    m.start().expect("start");
+    assert!(m.advance().is_none());
+    m.dem.p.vz[0] = f64::NAN;
+    match m.advance() {
+        Some(Ending::Unstable(b)) => {
+            let text = b.to_string();
+            assert!(text.contains("particle 0") && text.contains("t = "), "{text}");
+            // the NaN spreads through the drag to every component within the step
+            assert!(["x", "y", "z", "v_x", "v_y", "v_z"].contains(&b.field.as_str()), "{}", b.field);
+            assert!(b.value.is_nan() && b.time > 0.0);
+        }
+        other => panic!("expected a breakdown, got {other:?}"),
+    }
+}
