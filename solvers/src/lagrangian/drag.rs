@@ -136,6 +136,8 @@ pub struct FluidForces {
     pub left: Vec<f64>,
     /// redraw delay when the closure gives no finite duration (s): the fluid period
     pub fallback_period: f64,
+    /// no finite eddy drawn yet (the next one gets a random phase)
+    fresh: Vec<bool>,
     rng: Vec<Rng>,
     re: Vec<f64>,
     re_star: Vec<f64>,
@@ -157,6 +159,7 @@ impl FluidForces {
             fluct: vec![[0.0; 3]; n],
             left: vec![f64::NEG_INFINITY; n],
             fallback_period: 0.0,
+            fresh: vec![true; n],
             rng: (0..n as u64).map(|k| stream(seed, k)).collect(),
             re: vec![0.0; n],
             re_star: vec![0.0; n],
@@ -186,6 +189,7 @@ impl FluidForces {
         let urx = Disjoint::new(&mut self.urx);
         let fluct = Disjoint::new(&mut self.fluct);
         let left = Disjoint::new(&mut self.left);
+        let fresh = Disjoint::new(&mut self.fresh);
         let rng = Disjoint::new(&mut self.rng);
         let re = Disjoint::new(&mut self.re);
         let re_star = Disjoint::new(&mut self.re_star);
@@ -198,12 +202,13 @@ impl FluidForces {
         par_ranges(upto, |r| {
             let o = r.start;
             // SAFETY: par_ranges visits disjoint ranges.
-            let (k, urx, fluct, left, rng, re, re_star, cd, hind, phi_p, ur) = unsafe {
+            let (k, urx, fluct, left, fresh, rng, re, re_star, cd, hind, phi_p, ur) = unsafe {
                 (
                     k.chunk(r.clone()),
                     urx.chunk(r.clone()),
                     fluct.chunk(r.clone()),
                     left.chunk(r.clone()),
+                    fresh.chunk(r.clone()),
                     rng.chunk(r.clone()),
                     re.chunk(r.clone()),
                     re_star.chunk(r.clone()),
@@ -229,10 +234,13 @@ impl FluidForces {
                         let draw = fl.draw(&tp, &ParticleSlip::default(), &field.scales, &mut rng[i]);
                         fluct[i] = draw.u;
                         left[i] = if !draw.duration.is_finite() {
-                            // no turnover time yet (flow at rest): try again at the next fluid update
+                            // no turnover time yet (flow at rest): try again at the next fluid
+                            // update, still without a phase
                             fallback
-                        } else if left[i] == f64::NEG_INFINITY {
-                            // first draw: random phase
+                        } else if fresh[i] {
+                            // first finite eddy: random phase, so that particles do not redraw
+                            // in step
+                            fresh[i] = false;
                             draw.duration * rng[i].gen::<f64>()
                         } else {
                             draw.duration
@@ -282,6 +290,7 @@ impl FluidForces {
     pub fn restart_fluctuations(&mut self) {
         self.left.fill(f64::NEG_INFINITY);
         self.fluct.fill([0.0; 3]);
+        self.fresh.fill(true);
     }
 
     /// Particle response time m / k_p of particle `a` (s), for diagnostics.
