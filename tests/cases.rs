@@ -109,6 +109,15 @@ fn the_case_tree_holds_the_expected_scenes() {
         "verification/hindered_settling.toml",
         "verification/dry_mu_i_incline.toml",
         "verification/log_layer_mixing_length.toml",
+        "chassagne2023/dem_case01.toml",
+        "maurin2015/frey_sim6.toml",
+        "maurin2015/frey_sim14.toml",
+        "maurin2015/frey_sim20.toml",
+        "maurin2015/sweep3d.toml",
+        "verification/dem_binary_collision.toml",
+        "verification/dem_sliding_sphere.toml",
+        "verification/dem_settling.toml",
+        "verification/dem_homogeneous_cooling.toml",
     ] {
         assert!(names.contains(&name.to_string()), "missing {name}");
     }
@@ -132,7 +141,14 @@ fn every_scene_loads_and_its_solver_accepts_it() {
                     panic!("{}: {e}", path.display());
                 }
             }
-            // other solvers check their tables when they run; loading is all there is here
+            Some("lagrangian") => {
+                use saltus_solvers::lagrangian;
+                let cfg = lagrangian::Config::from_scene(&scene).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                // places the initial particles and builds the column; runs no step
+                if let Err(e) = lagrangian::Lagrangian::new(&scene, cfg) {
+                    panic!("{}: {e}", path.display());
+                }
+            }
             other => eprintln!("{}: solver.type {other:?}: loaded, not checked further", path.display()),
         }
     }

@@ -1,9 +1,9 @@
 //! # saltus-solvers
 //!
 //! Solvers of saltus. The entry point [`run`] dispatches on the scene's `[solver] type`:
-//! `eulerian` ([`eulerian`], the two-fluid column of Chassagne et al. 2023) runs;
-//! `lagrangian` (DEM coupled to the column) is refused with a clear message until it
-//! lands. [`mod@column`] is the fluid column shared by both.
+//! `eulerian` ([`eulerian`], the two-fluid column of Chassagne et al. 2023) and
+//! `lagrangian` ([`lagrangian`], soft-sphere DEM coupled to the column, Maurin et al.
+//! 2015). [`mod@column`] is the fluid column shared by both.
 
 // Errors carry file, key and message for the user; they are built once per failed run,
 // never in a hot loop, so their size does not matter.
@@ -11,6 +11,7 @@
 
 pub mod column;
 pub mod eulerian;
+pub mod lagrangian;
 pub mod output;
 
 use std::fmt;
@@ -24,7 +25,7 @@ pub use eulerian::Progress;
 pub use output::{Profiles, Summary};
 
 /// Solvers the program knows, with whether this build implements them.
-pub const SOLVERS: [(&str, bool); 2] = [("eulerian", true), ("lagrangian", false)];
+pub const SOLVERS: [(&str, bool); 2] = [("eulerian", true), ("lagrangian", true)];
 
 /// Result of a run: what was written, and a paragraph for the terminal.
 #[derive(Clone, Debug, Default)]
@@ -68,7 +69,9 @@ pub fn solver_name(scene: &Scene) -> Result<&str, Error> {
 /// may stop the run by returning `false`. A run that breaks down writes the last good
 /// state and a summary carrying the error, then returns the error.
 pub fn run(scene: &Scene, out: &Path, observer: &mut dyn FnMut(&Progress) -> bool) -> Result<RunReport, Error> {
-    solver_name(scene)?;
+    if solver_name(scene)? == "lagrangian" {
+        return lagrangian::run(scene, out, observer);
+    }
     let cfg = eulerian::Config::from_scene(scene)?;
     let mut model = eulerian::Eulerian::new(scene, cfg)?;
     let start = Instant::now();
@@ -154,6 +157,9 @@ pub fn eulerian_report(
         residual: m.residual(),
         cells: m.len(),
         error,
+        particles: None,
+        particle_steps_per_s: None,
+        shields_turbulent: None,
     };
     // a column without moving grains (clear water) has no transport levels
     let layers = if z1.is_finite() && summary.transport_layer_thickness.is_finite() {

@@ -83,6 +83,16 @@ pub struct Summary {
     /// why the run stopped early, if it did
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
+    /// Lagrangian runs: number of mobile particles
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub particles: Option<usize>,
+    /// Lagrangian runs: mobile particle-steps per wall-clock second of the flow phase
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub particle_steps_per_s: Option<f64>,
+    /// Lagrangian runs: Shields number from the largest turbulent (Reynolds) shear stress,
+    /// Maurin et al. 2015's theta*
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shields_turbulent: Option<f64>,
 }
 
 /// `manifest.json`: enough to reproduce the run.

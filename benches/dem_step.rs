@@ -1,0 +1,40 @@
+//! One coupled DEM step (drag, contacts, integration; the fluid column solved every fluid
+//! period, amortised) on the bed of Chassagne et al. 2023 case 1 in a 20 d x 20 d cell:
+//! 5730 mobile and 455 fixed spheres of 6 mm, 945 fluid cells. On one and two threads.
+//! `cargo bench --bench dem_step`
+
+use std::path::Path;
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use saltus_core::scene::Scene;
+use saltus_solvers::lagrangian::{Config, Lagrangian};
+
+fn coupled_step(c: &mut Criterion) {
+    saltus_closures::link();
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/chassagne2023/dem_case01.toml");
+    let scene =
+        Scene::from_file_with(&file, &["solver.settle_time=0.4".to_string(), "solver.end_time=1e9".to_string()])
+            .expect("dem_case01");
+    let mut group = c.benchmark_group("dem_coupled_step");
+    group.sample_size(30);
+    for threads in [1usize, 2] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
+        let cfg = Config::from_scene(&scene).expect("config");
+        let mut m = Lagrangian::new(&scene, cfg).expect("solver");
+        pool.install(|| {
+            m.start().expect("deposition");
+            // let the flow start so that the bed moves and contacts change
+            for _ in 0..50 {
+                assert!(m.advance().is_none());
+            }
+        });
+        group.throughput(Throughput::Elements(m.mobile() as u64));
+        group.bench_function(format!("{}_particles_{threads}_threads", m.mobile()), |b| {
+            b.iter(|| pool.install(|| m.step().expect("step")))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, coupled_step);
+criterion_main!(benches);

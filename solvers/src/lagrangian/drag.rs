@@ -1,0 +1,301 @@
+//! Fluid force on each particle: drag with the column velocity at the particle centre
+//! plus the fluctuation closure's stochastic velocity (Maurin et al. 2015 eqs 11-12,
+//! 15-16; Chassagne et al. 2023 eq 2.26).
+//!
+//! ```text
+//! F_D = (1/2) rho_f (pi d^2 / 4) f(phi, Re_p) C_D(Re*) |u_r| u_r,
+//! u_r = u_f(z_p) e_x + u'  - v_p,   Re_p = |u_r| d / nu_f,   Re* = hindrance convention
+//! ```
+//!
+//! written F_D = k_p u_r with k_p = (pi/8) rho_f nu_f d C_D(Re*) Re_p f, finite as
+//! |u_r| -> 0. u_f(z) is the column velocity interpolated linearly between cell centres
+//! (0 at the column bottom and below it, the top cell's value above the last centre); phi is the volume
+//! fraction of the cell holding the centre (as Maurin's implementation). Buoyancy is part
+//! of the body force ([`super::setup::body_acceleration`]).
+//!
+//! The closures are called once per chunk of particles through their batch methods
+//! (C_D over Re*, f over (phi, Re_p)); the hindrance's Reynolds convention is taken per
+//! cell as Re* = c(phi) Re_p with c = `drag_reynolds(phi, 1)`, checked linear at start-up.
+//! A hindrance found independent of Re_p at start-up (Richardson-Zaki) is evaluated per
+//! cell at each fluid update instead of per particle and step (the particle's phi is its
+//! cell's anyway).
+//!
+//! Fluctuations (`drw` now, any [`saltus_core::Fluctuation`]): each particle carries its
+//! own draw and the time left before the next one, and its own random stream
+//! `stream(seed, particle index)`, so the draws do not depend on the thread count. The
+//! first duration is cut by a uniform random fraction so that the particles do not redraw
+//! in step (the random phase the closure's documentation asks for).
+
+use rand::Rng as _;
+use saltus_core::rng::{stream, Rng};
+use saltus_core::{DragLaw, FlowScales, Fluctuation, Hindrance, ParticleSlip, TurbulencePoint};
+
+use super::dem::{par_ranges, Disjoint};
+use super::particles::Particles;
+
+/// Fluid fields the particles see, on the column's cells (uniform grid from z = `base`).
+#[derive(Clone, Debug, Default)]
+pub struct FluidField {
+    /// height of the column bottom in particle coordinates (m): the top of the rough layer
+    pub base: f64,
+    /// cell height (m)
+    pub dz: f64,
+    /// streamwise fluid velocity per cell centre (m/s)
+    pub u: Vec<f64>,
+    /// volume fraction per cell
+    pub phi: Vec<f64>,
+    /// kinematic Reynolds shear stress R_xz / (rho_f eps) per cell (m^2/s^2)
+    pub reynolds: Vec<f64>,
+    /// eddy viscosity per cell (m^2/s)
+    pub nu_t: Vec<f64>,
+    /// Re* / Re_p per cell (hindrance convention)
+    pub re_ratio: Vec<f64>,
+    /// hindrance factor per cell, when the hindrance does not depend on Re_p (then the
+    /// particles read it instead of evaluating the closure); empty otherwise
+    pub hindrance: Vec<f64>,
+    /// water depth and bulk velocity for the eddy turnover time
+    pub scales: FlowScales,
+}
+
+impl FluidField {
+    /// Fluid at rest over `n` cells of height `dz` above `base`.
+    pub fn at_rest(n: usize, dz: f64, base: f64) -> Self {
+        Self {
+            base,
+            dz,
+            u: vec![0.0; n],
+            phi: vec![0.0; n],
+            reynolds: vec![0.0; n],
+            nu_t: vec![0.0; n],
+            re_ratio: vec![1.0; n],
+            hindrance: Vec::new(),
+            scales: FlowScales::default(),
+        }
+    }
+
+    /// Cell holding height z (clamped to the column).
+    #[inline]
+    pub fn cell(&self, z: f64) -> usize {
+        // truncation is the floor for positive values and avoids a libm call per particle
+        let k = (z - self.base) / self.dz;
+        if k <= 0.0 {
+            0
+        } else {
+            (k as usize).min(self.u.len() - 1)
+        }
+    }
+
+    /// Fluid velocity at height z, linear between centres, 0 at the column bottom and
+    /// below.
+    #[inline]
+    pub fn velocity(&self, z: f64) -> f64 {
+        let z = z - self.base;
+        let s = z / self.dz - 0.5;
+        let n = self.u.len();
+        if s <= 0.0 {
+            let w = (z / (0.5 * self.dz)).clamp(0.0, 1.0);
+            return w * self.u[0];
+        }
+        let k = s as usize; // s > 0 here: truncation is the floor
+        if k + 1 >= n {
+            return self.u[n - 1];
+        }
+        let w = s - k as f64;
+        self.u[k] + w * (self.u[k + 1] - self.u[k])
+    }
+}
+
+/// The closures of the fluid force.
+#[derive(Clone, Copy, Debug)]
+pub struct DragModels<'a> {
+    /// single-particle drag
+    pub drag: &'a dyn DragLaw,
+    /// hindrance
+    pub hindrance: &'a dyn Hindrance,
+    /// fluctuations, `None` when inactive
+    pub fluctuation: Option<&'a dyn Fluctuation>,
+}
+
+/// Per-particle drag state and work arrays (all particles, fixed ones included: the
+/// fluid sees their drag).
+#[derive(Clone, Debug)]
+pub struct FluidForces {
+    /// fluid density (kg/m^3)
+    pub rho_f: f64,
+    /// fluid viscosity (m^2/s)
+    pub nu_f: f64,
+    /// particle density (kg/m^3)
+    pub rho_p: f64,
+    /// drag coefficient k_p with F = k_p u_r (kg/s), of the last evaluation
+    pub k: Vec<f64>,
+    /// streamwise relative velocity u_r,x of the last evaluation (m/s)
+    pub urx: Vec<f64>,
+    /// fluctuation velocity of each particle (m/s)
+    pub fluct: Vec<[f64; 3]>,
+    /// time left before the next draw (s); -inf before the first draw
+    pub left: Vec<f64>,
+    /// redraw delay when the closure gives no finite duration (s): the fluid period
+    pub fallback_period: f64,
+    /// no finite eddy drawn yet (the next one gets a random phase)
+    fresh: Vec<bool>,
+    rng: Vec<Rng>,
+    re: Vec<f64>,
+    re_star: Vec<f64>,
+    cd: Vec<f64>,
+    hind: Vec<f64>,
+    phi_p: Vec<f64>,
+    ur: Vec<[f64; 3]>,
+}
+
+impl FluidForces {
+    /// Work arrays for `n` particles; particle k draws from `stream(seed, k)`.
+    pub fn new(n: usize, seed: u64, rho_f: f64, nu_f: f64, rho_p: f64) -> Self {
+        Self {
+            rho_f,
+            nu_f,
+            rho_p,
+            k: vec![0.0; n],
+            urx: vec![0.0; n],
+            fluct: vec![[0.0; 3]; n],
+            left: vec![f64::NEG_INFINITY; n],
+            fallback_period: 0.0,
+            fresh: vec![true; n],
+            rng: (0..n as u64).map(|k| stream(seed, k)).collect(),
+            re: vec![0.0; n],
+            re_star: vec![0.0; n],
+            cd: vec![0.0; n],
+            hind: vec![0.0; n],
+            phi_p: vec![0.0; n],
+            ur: vec![[0.0; 3]; n],
+        }
+    }
+
+    /// Drag on particles `0..upto` (the mobile ones, or all of them at a fluid update)
+    /// into `out` (one slice per component, length >= mobile count; entries of fixed
+    /// particles are not written), advancing the fluctuation clocks by `dt`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn evaluate(
+        &mut self,
+        p: &Particles,
+        field: &FluidField,
+        models: &DragModels<'_>,
+        dt: f64,
+        upto: usize,
+        out: &mut [Vec<f64>; 3],
+    ) {
+        let (rho_f, nu_f, fallback) = (self.rho_f, self.nu_f, self.fallback_period);
+        let nm = p.n_mobile;
+        let k = Disjoint::new(&mut self.k);
+        let urx = Disjoint::new(&mut self.urx);
+        let fluct = Disjoint::new(&mut self.fluct);
+        let left = Disjoint::new(&mut self.left);
+        let fresh = Disjoint::new(&mut self.fresh);
+        let rng = Disjoint::new(&mut self.rng);
+        let re = Disjoint::new(&mut self.re);
+        let re_star = Disjoint::new(&mut self.re_star);
+        let cd = Disjoint::new(&mut self.cd);
+        let hind = Disjoint::new(&mut self.hind);
+        let phi_p = Disjoint::new(&mut self.phi_p);
+        let ur = Disjoint::new(&mut self.ur);
+        let [ox, oy, oz] = out;
+        let (ox, oy, oz) = (Disjoint::new(&mut ox[..]), Disjoint::new(&mut oy[..]), Disjoint::new(&mut oz[..]));
+        par_ranges(upto, |r| {
+            let o = r.start;
+            // SAFETY: par_ranges visits disjoint ranges.
+            let (k, urx, fluct, left, fresh, rng, re, re_star, cd, hind, phi_p, ur) = unsafe {
+                (
+                    k.chunk(r.clone()),
+                    urx.chunk(r.clone()),
+                    fluct.chunk(r.clone()),
+                    left.chunk(r.clone()),
+                    fresh.chunk(r.clone()),
+                    rng.chunk(r.clone()),
+                    re.chunk(r.clone()),
+                    re_star.chunk(r.clone()),
+                    cd.chunk(r.clone()),
+                    hind.chunk(r.clone()),
+                    phi_p.chunk(r.clone()),
+                    ur.chunk(r.clone()),
+                )
+            };
+            for a in r.clone() {
+                let i = a - o;
+                let z = p.z[a];
+                let cell = field.cell(z);
+                let mobile = a < nm;
+                if let (Some(fl), true) = (models.fluctuation, mobile) {
+                    left[i] -= dt;
+                    if left[i] <= 0.0 {
+                        let tp = TurbulencePoint {
+                            nu_t: field.nu_t[cell],
+                            reynolds_stress: field.reynolds[cell],
+                            ..TurbulencePoint::default()
+                        };
+                        let draw = fl.draw(&tp, &ParticleSlip::default(), &field.scales, &mut rng[i]);
+                        fluct[i] = draw.u;
+                        left[i] = if !draw.duration.is_finite() {
+                            // no turnover time yet (flow at rest): try again at the next fluid
+                            // update, still without a phase
+                            fallback
+                        } else if fresh[i] {
+                            // first finite eddy: random phase, so that particles do not redraw
+                            // in step
+                            fresh[i] = false;
+                            draw.duration * rng[i].gen::<f64>()
+                        } else {
+                            draw.duration
+                        };
+                    }
+                }
+                let u = [field.velocity(z) + fluct[i][0] - p.vx[a], fluct[i][1] - p.vy[a], fluct[i][2] - p.vz[a]];
+                let d = 2.0 * p.radius[a];
+                let speed = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+                re[i] = speed * d / nu_f;
+                re_star[i] = (field.re_ratio[cell] * re[i]).max(1e-12);
+                phi_p[i] = field.phi[cell];
+                ur[i] = u;
+            }
+            let n = r.len();
+            models.drag.cd_batch(&re_star[..n], &mut cd[..n]);
+            if field.hindrance.is_empty() {
+                models.hindrance.factor_batch(&phi_p[..n], &re[..n], &mut hind[..n]);
+            } else {
+                for (h, a) in hind[..n].iter_mut().zip(r.clone()) {
+                    *h = field.hindrance[field.cell(p.z[a])];
+                }
+            }
+            // SAFETY: disjoint ranges; only mobile particles have output slots.
+            let m_end = r.end.min(nm);
+            let (ox, oy, oz) = if o < m_end {
+                unsafe { (ox.chunk(o..m_end), oy.chunk(o..m_end), oz.chunk(o..m_end)) }
+            } else {
+                (&mut [][..], &mut [][..], &mut [][..])
+            };
+            for i in 0..n {
+                let d = 2.0 * p.radius[o + i];
+                let kp = std::f64::consts::PI / 8.0 * rho_f * nu_f * d * cd[i] * re[i] * hind[i];
+                k[i] = kp;
+                urx[i] = ur[i][0];
+                if i < ox.len() {
+                    ox[i] = kp * ur[i][0];
+                    oy[i] = kp * ur[i][1];
+                    oz[i] = kp * ur[i][2];
+                }
+            }
+        });
+    }
+
+    /// Restart every fluctuation clock (first draw with a random phase at the next
+    /// evaluation), e.g. when the flow starts.
+    pub fn restart_fluctuations(&mut self) {
+        self.left.fill(f64::NEG_INFINITY);
+        self.fluct.fill([0.0; 3]);
+        self.fresh.fill(true);
+    }
+
+    /// Particle response time m / k_p of particle `a` (s), for diagnostics.
+    pub fn response_time(&self, p: &Particles, a: usize) -> f64 {
+        let m = self.rho_p * super::setup::sphere_volume(2.0 * p.radius[a]);
+        m / self.k[a]
+    }
+}

@@ -1,0 +1,22 @@
+//! # Lagrangian solver: soft-sphere DEM coupled to the 1D fluid column (Maurin et al. 2015)
+
+pub mod averaging;
+pub mod config;
+pub mod contact;
+pub mod dem;
+pub mod drag;
+pub mod neighbours;
+pub mod particles;
+pub mod report;
+pub mod setup;
+pub mod solver;
+pub mod stats;
+pub mod vtk;
+
+pub use config::{Bottom, Config, Domain, FluidMode, Initial, Settings, Surface};
+pub use contact::{ContactLaw, ContactModel};
+pub use dem::{Dem, Wall};
+pub use neighbours::NeighbourList;
+pub use particles::{Box3, Particles};
+pub use report::run;
+pub use solver::{Breakdown, Ending, Lagrangian};
