@@ -21,11 +21,12 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// A failure that is clean: exit code 2, `error:` on stderr, no panic.
+/// A failure that is clean: exit code 2, a line starting with `error:` on stderr (after
+/// any warnings, e.g. reference data missing from a checkout without ../shared), no panic.
 fn assert_clean_failure(o: &Output) -> String {
     let err = stderr(o);
     assert_eq!(o.status.code(), Some(2), "expected exit 2, got {:?}: {err}", o.status);
-    assert!(err.starts_with("error:"), "{err}");
+    assert!(err.lines().any(|l| l.starts_with("error:")), "{err}");
     assert!(!err.contains("panicked"), "{err}");
     err
 }
@@ -499,7 +500,12 @@ fn compare_runs_both_models_of_case01() {
     let o = saltus(&["compare", COMPARE01, "--out", d.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     let (header, rows) = read_table(&d.join("comparison.csv"));
-    let expected = [
+    // the DEM profile of the base scene's [reference] lives outside the repository
+    // (../shared/data); without it the table has no rms_ columns
+    let dem = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/data/chassagne_dem_bedload_sedfoam/BedloadTurbDEM.txt")
+        .is_file();
+    let mut expected = vec![
         "variant",
         "qs_star",
         "qs",
@@ -511,18 +517,19 @@ fn compare_runs_both_models_of_case01() {
         "steps",
         "wall_time_s",
         "mass_error",
-        "rms_phi",
-        "rms_u_p",
-        "rms_u_f",
-        "rms_theta_g",
-        "error",
     ];
+    if dem {
+        expected.extend(["rms_phi", "rms_u_p", "rms_u_f", "rms_theta_g"]);
+    }
+    expected.push("error");
     assert_eq!(header, expected);
     assert_eq!(rows.len(), 2, "{rows:?}");
-    // against the DEM profile (the base scene's reference): the proposed model is closer in
-    // phi and u_p, as in the paper's figures 3 and 8
-    let rms = |r: usize, c: &str| -> f64 { cell(&header, &rows[r], c).parse().unwrap() };
-    assert!(rms(1, "rms_phi") < rms(0, "rms_phi") && rms(1, "rms_u_p") < rms(0, "rms_u_p"), "{rows:?}");
+    if dem {
+        // against the DEM profile the proposed model is closer in phi and u_p, as in the
+        // paper's figures 3 and 8
+        let rms = |r: usize, c: &str| -> f64 { cell(&header, &rows[r], c).parse().unwrap() };
+        assert!(rms(1, "rms_phi") < rms(0, "rms_phi") && rms(1, "rms_u_p") < rms(0, "rms_u_p"), "{rows:?}");
+    }
     assert_eq!(cell(&header, &rows[0], "variant"), "initial (Garzo-Dufty)");
     assert_eq!(cell(&header, &rows[1], "variant"), "proposed");
     let qs: Vec<f64> = rows.iter().map(|r| cell(&header, r, "qs_star").parse().unwrap()).collect();
