@@ -256,6 +256,21 @@ pub fn de_path<T: DeserializeOwned>(value: toml::Value, file: &Path, prefix: &st
     })
 }
 
+/// The solver-specific `[domain]` (required; `needs` says what it must hold when it is
+/// missing) and `[solver]` (optional, defaults) tables of `scene`, typed, with errors that
+/// name the file and the full key.
+pub fn domain_and_solver<D: DeserializeOwned, S: DeserializeOwned>(scene: &Scene, needs: &str) -> Result<(D, S)> {
+    let file = scene.path.as_path();
+    let domain_table = scene.domain.clone().ok_or_else(|| Error::Key {
+        file: file.into(),
+        key: "domain".into(),
+        message: format!("missing table; {needs}"),
+    })?;
+    let domain = de_path(toml::Value::Table(domain_table), file, "domain")?;
+    let settings = de_path(toml::Value::Table(scene.solver.clone().unwrap_or_default()), file, "solver")?;
+    Ok((domain, settings))
+}
+
 /// Deserialise one closure table of family `family` found at key path `key`. The model
 /// name is checked against the registry first so that an unknown name lists the known
 /// ones, and the parameters are range-checked.

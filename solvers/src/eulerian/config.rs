@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use saltus_core::scene::{check, de_path, Scene};
+use saltus_core::scene::{check, domain_and_solver, Scene};
 use saltus_core::{Error, ParamRange};
 use serde::{Deserialize, Serialize};
 
@@ -127,13 +127,8 @@ impl Config {
     /// Read `[domain]` and `[solver]` of `scene`, with errors that name the file and key.
     pub fn from_scene(scene: &Scene) -> Result<Config, Error> {
         let file = scene.path.as_path();
-        let domain_table = scene.domain.clone().ok_or_else(|| Error::Key {
-            file: file.into(),
-            key: "domain".into(),
-            message: "missing table; an Eulerian scene needs water_depth and cells".into(),
-        })?;
-        let domain: Domain = de_path(toml::Value::Table(domain_table), file, "domain")?;
-        let settings: Settings = de_path(toml::Value::Table(scene.solver.clone().unwrap_or_default()), file, "solver")?;
+        let (domain, settings): (Domain, Settings) =
+            domain_and_solver(scene, "an Eulerian scene needs water_depth and cells")?;
         let cfg = Config { domain, settings };
         cfg.check(file)?;
         Ok(cfg)
