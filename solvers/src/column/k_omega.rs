@@ -61,6 +61,12 @@ pub struct KOmegaColumn {
 }
 
 impl KOmegaColumn {
+    /// `[k, omega]`, the transported fields in the order of the closure's
+    /// `Turbulence::transported`, for a [`saltus_core::ColumnView`].
+    pub fn fields(&self) -> [&[f64]; 2] {
+        [self.k.as_slice(), self.omega.as_slice()]
+    }
+
     /// `n` cells at uniform k0 and omega0.
     pub fn new(n: usize, k0: f64, omega0: f64) -> Self {
         Self {

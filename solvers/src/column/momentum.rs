@@ -631,14 +631,8 @@ impl FluidColumn {
 
     /// nu_t from the current shear rate into `nu_t_work`.
     fn evaluate_turbulence(&mut self, turbulence: &dyn Turbulence) -> Result<(), ColumnError> {
-        let kw_fields;
-        let transported: &[&[f64]] = match &self.kw {
-            Some(kw) => {
-                kw_fields = [kw.col.k.as_slice(), kw.col.omega.as_slice()];
-                &kw_fields
-            }
-            None => &[],
-        };
+        let kw_fields = self.kw.as_ref().map(|kw| kw.col.fields());
+        let transported: &[&[f64]] = kw_fields.as_ref().map_or(&[], |f| f.as_slice());
         let col = ColumnView {
             z: self.grid.centres(),
             dz: self.grid.dz(),

@@ -598,14 +598,8 @@ impl<'a> Eulerian<'a> {
         }
         // fluid viscosity and eddy viscosity (under-relaxed Picard between steps)
         self.m.viscosity.ratio_batch(&self.phi, &mut self.visc_ratio);
-        let kw_fields;
-        let transported: &[&[f64]] = match &self.kw {
-            Some(kw) => {
-                kw_fields = [kw.col.k.as_slice(), kw.col.omega.as_slice()];
-                &kw_fields
-            }
-            None => &[],
-        };
+        let kw_fields = self.kw.as_ref().map(|kw| kw.col.fields());
+        let transported: &[&[f64]] = kw_fields.as_ref().map_or(&[], |f| f.as_slice());
         let col = ColumnView {
             z: &self.zc,
             dz: &self.dz,
