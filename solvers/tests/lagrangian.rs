@@ -287,3 +287,35 @@ fn a_run_that_breaks_down_names_time_particle_and_field() {
         other => panic!("expected a breakdown, got {other:?}"),
     }
 }
+
+#[test]
+fn k_omega_column_feeds_the_eddy_interaction_model() {
+    // the DEM's fluid column transports k and omega (Cheng eqs 21-35) and the EIM draws
+    // each component from N(0, 2k/3) of the particle's cell (Cheng eq 36): after a few
+    // fluid periods the column holds positive k and omega, the particles see them, and the
+    // drawn fluctuations are non-zero and bounded by a few sqrt(2k/3)
+    let s = small_bed(&[
+        "domain.water_depth=0.06",
+        "solver.end_time=1.0",
+        "closures.turbulence={type=\"k_omega\", wall=\"rough\"}",
+        "closures.fluctuation={type=\"eim\"}",
+    ]);
+    let mut m = model(&s);
+    m.start().expect("start");
+    while m.time() < 0.1 {
+        if let Some(end) = m.advance() {
+            panic!("ended before 0.1 s: {end:?}");
+        }
+    }
+    let col = m.column().expect("coupled");
+    let (k, omega) = col.k_omega().expect("k-omega state in the column");
+    assert!(k.iter().all(|v| v.is_finite() && *v >= 0.0) && omega.iter().all(|v| v.is_finite() && *v > 0.0));
+    let kmax = k.iter().fold(0.0f64, |a, &b| a.max(b));
+    assert!(kmax > 0.0, "no turbulence after 0.1 s");
+    let nm = m.dem.p.n_mobile;
+    let fl = &m.forces.fluct[..nm];
+    let moved = fl.iter().filter(|f| f.iter().any(|c| *c != 0.0)).count();
+    assert!(moved > nm / 2, "{moved} of {nm} particles drew a fluctuation");
+    let bound = 6.0 * (2.0 * kmax / 3.0).sqrt();
+    assert!(fl.iter().flatten().all(|c| c.abs() <= bound), "fluctuation beyond 6 sigma of the largest k");
+}

@@ -48,6 +48,10 @@ pub struct FluidField {
     pub reynolds: Vec<f64>,
     /// eddy viscosity per cell (m^2/s)
     pub nu_t: Vec<f64>,
+    /// turbulent kinetic energy and specific dissipation rate per cell, when the column
+    /// transports them (k-omega; the eddy interaction model draws from them); empty
+    /// otherwise
+    pub k_omega: [Vec<f64>; 2],
     /// Re* / Re_p per cell (hindrance convention)
     pub re_ratio: Vec<f64>,
     /// hindrance factor per cell, when the hindrance does not depend on Re_p (then the
@@ -67,6 +71,7 @@ impl FluidField {
             phi: vec![0.0; n],
             reynolds: vec![0.0; n],
             nu_t: vec![0.0; n],
+            k_omega: [Vec::new(), Vec::new()],
             re_ratio: vec![1.0; n],
             hindrance: Vec::new(),
             scales: FlowScales::default(),
@@ -183,7 +188,7 @@ impl FluidForces {
         upto: usize,
         out: &mut [Vec<f64>; 3],
     ) {
-        let (rho_f, nu_f, fallback) = (self.rho_f, self.nu_f, self.fallback_period);
+        let (rho_f, nu_f, rho_p, fallback) = (self.rho_f, self.nu_f, self.rho_p, self.fallback_period);
         let nm = p.n_mobile;
         let k = Disjoint::new(&mut self.k);
         let urx = Disjoint::new(&mut self.urx);
@@ -226,12 +231,25 @@ impl FluidForces {
                 if let (Some(fl), true) = (models.fluctuation, mobile) {
                     left[i] -= dt;
                     if left[i] <= 0.0 {
+                        let [kf, wf] = &field.k_omega;
                         let tp = TurbulencePoint {
+                            k: kf.get(cell).copied().unwrap_or(0.0),
+                            omega: wf.get(cell).copied().unwrap_or(0.0),
                             nu_t: field.nu_t[cell],
                             reynolds_stress: field.reynolds[cell],
-                            ..TurbulencePoint::default()
                         };
-                        let draw = fl.draw(&tp, &ParticleSlip::default(), &field.scales, &mut rng[i]);
+                        // slip and response time of the last evaluation, for the eddy
+                        // crossing time of the eddy interaction model (Cheng eq 37)
+                        let [ax, ay, az] = ur[i];
+                        let slip = (ax * ax + ay * ay + az * az).sqrt();
+                        let d = 2.0 * p.radius[a];
+                        let response_time = if slip > 0.0 && cd[i] > 0.0 {
+                            4.0 * rho_p * d / (3.0 * rho_f * cd[i] * slip)
+                        } else {
+                            f64::INFINITY
+                        };
+                        let ps = ParticleSlip { slip, response_time };
+                        let draw = fl.draw(&tp, &ps, &field.scales, &mut rng[i]);
                         fluct[i] = draw.u;
                         left[i] = if !draw.duration.is_finite() {
                             // no turnover time yet (flow at rest): try again at the next fluid

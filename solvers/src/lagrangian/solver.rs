@@ -108,9 +108,9 @@ impl<'a> Lagrangian<'a> {
         let viscosity = cl.viscosity.as_deref().ok_or_else(|| missing("viscosity"))?;
         let turbulence = cl.turbulence.as_deref().ok_or_else(|| missing("turbulence"))?;
         let fluctuation = cl.fluctuation.as_deref().filter(|f| f.is_active());
-        if !turbulence.transported().is_empty() {
+        if !turbulence.transported().is_empty() && turbulence.as_two_equation().is_none() {
             return Err(Error::Invalid(format!(
-                "{file}: closures.turbulence `{}` transports fields, which the column solver does not advance yet; use mixing_length or laminar",
+                "{file}: closures.turbulence `{}` transports fields the column solver cannot advance; use laminar, mixing_length or k_omega",
                 turbulence.name()
             )));
         }
@@ -468,6 +468,13 @@ impl<'a> Lagrangian<'a> {
             }
             self.field.u.copy_from_slice(col.velocity());
             self.field.nu_t.copy_from_slice(col.eddy_viscosity());
+            if let Some((k, omega)) = col.k_omega() {
+                let [kf, wf] = &mut self.field.k_omega;
+                kf.clear();
+                kf.extend_from_slice(k);
+                wf.clear();
+                wf.extend_from_slice(omega);
+            }
             for ((r, &nu), &g) in self.field.reynolds.iter_mut().zip(col.eddy_viscosity()).zip(col.shear_rate()) {
                 *r = (nu * g).max(0.0);
             }
