@@ -119,18 +119,14 @@ pub fn eulerian_report(
     p.push("q_s", q.clone());
     p.push(if m.is_kinetic() { "inertial_number" } else { "control_number" }, derived.control.clone());
 
-    let g = scene.physics.gravity;
-    let d = scene.particles.diameter;
-    let sm1 = scene.submerged_ratio();
     let qs: f64 = q.iter().zip(m.dz()).map(|(q, h)| q * h).sum();
-    let qscale = (sm1.abs() * g * d * d * d).sqrt();
-    let buoyant = (scene.particles.density - scene.fluid.density).abs() * g * d;
     let tau_max = derived.tau_f.iter().fold(0.0f64, |a, t| a.max(t.abs()));
-    let cfg = m.config().clone();
-    let slope = scene.physics.slope;
-    let cos = (1.0 - slope * slope).max(0.0).sqrt();
-    let shields_nominal = (slope > 0.0 && cfg.domain.water_depth > 0.0 && sm1 > 0.0)
-        .then(|| scene.fluid.density * g * slope * cfg.domain.water_depth / (buoyant * cos));
+    let scales = output::TransportScales::new(
+        scene,
+        scene.particles.density,
+        scene.particles.diameter,
+        m.config().domain.water_depth,
+    );
     let (z1, z99) = output::flux_levels(m.faces(), &q, 0.01, 0.99);
     let (ending_name, error) = match ending {
         eulerian::Ending::Steady => ("steady", None),
@@ -142,9 +138,9 @@ pub fn eulerian_report(
         scene: scene.meta.name.clone(),
         solver: "eulerian".into(),
         qs,
-        qs_star: if qscale > 0.0 { qs / qscale } else { f64::NAN },
-        shields: if buoyant > 0.0 { tau_max / buoyant } else { f64::NAN },
-        shields_nominal,
+        qs_star: scales.qs_star(qs),
+        shields: scales.shields(tau_max),
+        shields_nominal: scales.shields_nominal,
         bed_height: z1,
         transport_layer_thickness: z99 - z1,
         steady: matches!(ending, eulerian::Ending::Steady),

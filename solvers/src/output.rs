@@ -158,6 +158,53 @@ pub fn write_run(dir: &Path, scene: &Scene, profiles: &Profiles, summary: &Summa
     put("manifest.json", json + "\n")
 }
 
+/// Scales that turn a run's transport and stresses into the dimensionless numbers of the
+/// summary, the same for every solver: qs* = qs / sqrt((s-1) g d^3), Shields = tau /
+/// ((rho_p - rho_f) g d), nominal Shields = rho_f g sin h_w / ((rho_p - rho_f) g cos d).
+#[derive(Clone, Copy, Debug)]
+pub struct TransportScales {
+    /// sqrt(|s - 1| g d^3) (m^2/s)
+    pub qs: f64,
+    /// |rho_p - rho_f| g d (Pa)
+    pub stress: f64,
+    /// Shields number of the driving over the water depth, when the slope drives the flow
+    pub shields_nominal: Option<f64>,
+}
+
+impl TransportScales {
+    /// Scales of `scene` with particles of density `rho_p`, diameter `d` under a water
+    /// depth `water_depth`.
+    pub fn new(scene: &saltus_core::scene::Scene, rho_p: f64, d: f64, water_depth: f64) -> Self {
+        let g = scene.physics.gravity;
+        let rho_f = scene.fluid.density;
+        let sm1 = rho_p / rho_f - 1.0;
+        let stress = (rho_p - rho_f).abs() * g * d;
+        let slope = scene.physics.slope;
+        let cos = (1.0 - slope * slope).max(0.0).sqrt();
+        let shields_nominal =
+            (slope > 0.0 && water_depth > 0.0 && sm1 > 0.0).then(|| rho_f * g * slope * water_depth / (stress * cos));
+        Self { qs: (sm1.abs() * g * d * d * d).sqrt(), stress, shields_nominal }
+    }
+
+    /// qs* of a transport rate qs (m^2/s); NaN without a scale.
+    pub fn qs_star(&self, qs: f64) -> f64 {
+        if self.qs > 0.0 {
+            qs / self.qs
+        } else {
+            f64::NAN
+        }
+    }
+
+    /// Shields number of a shear stress (Pa); NaN without a scale.
+    pub fn shields(&self, tau: f64) -> f64 {
+        if self.stress > 0.0 {
+            tau / self.stress
+        } else {
+            f64::NAN
+        }
+    }
+}
+
 /// Levels (m) below which the fractions `lo` and `hi` of the integral of `q dz` lie,
 /// interpolated linearly inside cells.
 pub fn flux_levels(faces: &[f64], q: &[f64], lo: f64, hi: f64) -> (f64, f64) {

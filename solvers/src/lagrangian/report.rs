@@ -96,20 +96,12 @@ pub fn report(scene: &Scene, m: &Lagrangian<'_>, ending: &Ending, wall: f64, flo
     p.push("nu_t", av.nu_t.clone());
     p.push("beta", av.beta.clone());
 
-    let g = scene.physics.gravity;
     let mat = m.material();
     let d = mat.d;
-    let sm1 = scene.submerged_ratio();
     let qs: f64 = av.q_s.iter().map(|q| q * dz).sum();
-    let qscale = (sm1.abs() * g * d * d * d).sqrt();
-    let buoyant = (mat.rho_p - m.fluid_density()).abs() * g * d;
+    let scales = output::TransportScales::new(scene, mat.rho_p, d, m.config().domain.water_depth);
     let tau_max = av.tau_face.iter().fold(0.0f64, |a, t| a.max(t.abs()));
     let tau_t_max = av.tau_t.iter().fold(0.0f64, |a, t| a.max(*t));
-    let slope = scene.physics.slope;
-    let cos = (1.0 - slope * slope).max(0.0).sqrt();
-    let hw = m.config().domain.water_depth;
-    let shields_nominal =
-        (slope > 0.0 && hw > 0.0 && sm1 > 0.0).then(|| scene.fluid.density * g * slope * hw / (buoyant * cos));
     let (z1, z99) = output::flux_levels(&faces, &av.q_s, 0.01, 0.99);
     let (ending_name, error) = match ending {
         Ending::Steady => ("steady", None),
@@ -123,9 +115,9 @@ pub fn report(scene: &Scene, m: &Lagrangian<'_>, ending: &Ending, wall: f64, flo
         scene: scene.meta.name.clone(),
         solver: "lagrangian".into(),
         qs,
-        qs_star: if qscale > 0.0 { qs / qscale } else { f64::NAN },
-        shields: if buoyant > 0.0 { tau_max / buoyant } else { f64::NAN },
-        shields_nominal,
+        qs_star: scales.qs_star(qs),
+        shields: scales.shields(tau_max),
+        shields_nominal: scales.shields_nominal,
         bed_height: z1,
         transport_layer_thickness: z99 - z1,
         steady: m.steady().is_steady(),
@@ -140,7 +132,7 @@ pub fn report(scene: &Scene, m: &Lagrangian<'_>, ending: &Ending, wall: f64, flo
         error,
         particles: Some(mobile),
         particle_steps_per_s: throughput,
-        shields_turbulent: (buoyant > 0.0).then(|| tau_t_max / buoyant),
+        shields_turbulent: (scales.stress > 0.0).then(|| scales.shields(tau_t_max)),
     };
     let text = format!(
         "{}: {} after {:.3} s of flow ({} DEM steps of {:.3e} s, {} neighbour-list builds, {} mobile particles, {} samples) in {:.1} s wall time ({:.2e} particle-steps/s); qs* = {:.4} (qs = {:.4e} m^2/s), Shields {:.3} (turbulent theta* {:.3}), bed surface {:.4} m, transport layer {:.4} m",
