@@ -265,7 +265,7 @@ fn summary_cells(s: &saltus_solvers::Summary, precise: bool) -> Vec<String> {
             format!("{:?}", s.sim_time_s),
             s.steps.to_string(),
             format!("{:?}", s.wall_time_s),
-            format!("{:?}", s.mass_error),
+            s.mass_error.map_or_else(String::new, |m| format!("{m:?}")),
         ];
     }
     vec![
@@ -278,7 +278,7 @@ fn summary_cells(s: &saltus_solvers::Summary, precise: bool) -> Vec<String> {
         format!("{:.2}", s.sim_time_s),
         s.steps.to_string(),
         format!("{:.3}", s.wall_time_s),
-        format!("{:.1e}", s.mass_error),
+        s.mass_error.map_or_else(String::new, |m| format!("{m:.1e}")),
     ]
 }
 

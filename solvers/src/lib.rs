@@ -13,6 +13,7 @@ pub mod column;
 pub mod eulerian;
 pub mod lagrangian;
 pub mod output;
+pub mod run;
 
 use std::fmt;
 use std::path::Path;
@@ -147,9 +148,9 @@ pub fn eulerian_report(
         ending: ending_name.into(),
         sim_time_s: m.time(),
         steps: m.steps(),
-        rejected_steps: m.rejected_steps(),
+        rejected_steps: Some(m.rejected_steps()),
         wall_time_s: wall,
-        mass_error: m.mass_error(),
+        mass_error: Some(m.mass_error()),
         residual: m.residual(),
         cells: m.len(),
         error,
@@ -169,12 +170,12 @@ pub fn eulerian_report(
         if summary.steady { "steady" } else { ending_name },
         summary.sim_time_s,
         summary.steps,
-        summary.rejected_steps,
+        m.rejected_steps(),
         wall,
         summary.qs_star,
         qs,
         summary.shields,
-        summary.mass_error
+        m.mass_error()
     );
     RunReport { profiles: p, summary, text }
 }

@@ -70,12 +70,15 @@ pub struct Summary {
     pub sim_time_s: f64,
     /// accepted steps
     pub steps: usize,
-    /// rejected (retried) steps
-    pub rejected_steps: usize,
+    /// rejected (retried) steps; absent for solvers without step rejection (the DEM)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rejected_steps: Option<usize>,
     /// wall-clock time of the solve (s)
     pub wall_time_s: f64,
-    /// relative change of the sediment mass over the run
-    pub mass_error: f64,
+    /// relative change of the sediment mass over the run; absent where the solver does not
+    /// measure it (the DEM conserves its particles by construction)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass_error: Option<f64>,
     /// last steady residual (1/s)
     pub residual: f64,
     /// number of cells

@@ -1,0 +1,275 @@
+//! One run driver for both solvers.
+//!
+//! A solver is a [`Stepper`]: it owns its state and knows how to advance it by one unit
+//! of work (an accepted time step of the Eulerian column; the DEM steps up to the next
+//! fluid update of the Lagrangian solver), how far it is ([`Progress`]) and what it has
+//! to report ([`crate::RunReport`]). The driver ([`drive`]) owns the loop, the wall
+//! clock and the observer, in the spirit of argmin's `Executor`: it stops the run on the
+//! solver's own ending, on a breakdown or when the observer asks, and always leaves the
+//! last state in the stepper so that the caller can report it. Every run ends with one
+//! [`Ending`]; a breakdown is one [`Breakdown`] whichever solver met it.
+
+use std::borrow::Cow;
+use std::fmt;
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::RunReport;
+
+/// Where a run went bad.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Place {
+    /// a cell of the column, by index from the bottom, with its centre (m)
+    Cell {
+        /// index from the bottom
+        index: usize,
+        /// cell centre (m)
+        z: f64,
+    },
+    /// a particle, by index
+    Particle {
+        /// index in the particle arrays
+        index: usize,
+    },
+    /// the column as a whole (a linear system, a global constraint)
+    Column,
+}
+
+impl fmt::Display for Place {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Place::Cell { index, z } => write!(f, "cell {index} (z = {z:.6} m)"),
+            Place::Particle { index } => write!(f, "particle {index}"),
+            Place::Column => f.write_str("the column"),
+        }
+    }
+}
+
+/// Where and why a run stopped: time, place, field, value and reason.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Breakdown {
+    /// simulated time (s)
+    pub time: f64,
+    /// where
+    pub place: Place,
+    /// the field that went bad (`phi`, `u_f`, `velocity`, ...)
+    pub field: Cow<'static, str>,
+    /// its value
+    pub value: f64,
+    /// what is wrong
+    pub reason: String,
+}
+
+impl fmt::Display for Breakdown {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "t = {:.6} s: {} = {:e} in {}: {}", self.time, self.field, self.value, self.place, self.reason)
+    }
+}
+
+/// How a run ended.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Ending {
+    /// the solver's steady-state criterion is met
+    Steady,
+    /// the end time is reached
+    EndTime,
+    /// the step cap is reached
+    MaxSteps,
+    /// the observer asked to stop (Ctrl-C, a caller's budget)
+    Interrupted,
+    /// the state went bad; the stepper holds the last good state
+    Unstable(Breakdown),
+}
+
+impl Ending {
+    /// Short name, as written in `summary.json`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Ending::Steady => "steady",
+            Ending::EndTime => "end_time",
+            Ending::MaxSteps => "max_steps",
+            Ending::Interrupted => "interrupted",
+            Ending::Unstable(_) => "unstable",
+        }
+    }
+
+    /// The breakdown, for an unstable run.
+    pub fn breakdown(&self) -> Option<&Breakdown> {
+        match self {
+            Ending::Unstable(b) => Some(b),
+            _ => None,
+        }
+    }
+}
+
+/// What the solver is doing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Phase {
+    /// set-up work before the flow (the DEM deposition)
+    Setup,
+    /// the flow
+    Flow,
+}
+
+/// How far a run is, handed to the observer after every unit of work.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Progress {
+    /// what the solver is doing
+    pub phase: Phase,
+    /// simulated time of the phase (s)
+    pub time: f64,
+    /// end time of the phase (s)
+    pub end_time: f64,
+    /// steps taken
+    pub steps: u64,
+    /// current time step (s)
+    pub dt: f64,
+    /// steady-state residual in the solver's own measure (1/s for the Eulerian rates, a
+    /// relative change of the transport rate between windows for the DEM); `None` before
+    /// the solver has one
+    pub residual: Option<f64>,
+}
+
+/// What the observer tells the driver.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Control {
+    /// go on
+    Continue,
+    /// stop now, ending [`Ending::Interrupted`]
+    Stop,
+}
+
+/// A solver as the driver sees it.
+pub trait Stepper {
+    /// Solver name, as in `[solver] type`.
+    fn name(&self) -> &'static str;
+
+    /// Advance by one unit of work. `None` while the run goes on; the ending when the
+    /// solver's own criteria end it (steady, end time, step cap) or when the state went
+    /// bad (the stepper then holds the last good state).
+    fn step(&mut self) -> Option<Ending>;
+
+    /// Where the run is.
+    fn progress(&self) -> Progress;
+
+    /// Profiles, summary and paragraph of the state as it is now, for a run that ended
+    /// with `ending` after `wall` seconds of wall-clock time.
+    fn report(&self, ending: &Ending, wall: f64) -> RunReport;
+}
+
+/// Something that watches a run.
+pub trait Observer {
+    /// Called after every unit of work.
+    fn observe(&mut self, progress: &Progress) -> Control;
+}
+
+impl<F: FnMut(&Progress) -> Control> Observer for F {
+    fn observe(&mut self, progress: &Progress) -> Control {
+        self(progress)
+    }
+}
+
+/// An observer that never stops a run.
+pub struct Quiet;
+
+impl Observer for Quiet {
+    fn observe(&mut self, _: &Progress) -> Control {
+        Control::Continue
+    }
+}
+
+/// Drive `stepper` until it ends or `observer` stops it. Returns the ending and the
+/// wall-clock time (s); the stepper keeps its last state.
+pub fn drive(stepper: &mut dyn Stepper, observer: &mut dyn Observer) -> (Ending, f64) {
+    let start = Instant::now();
+    let ending = loop {
+        if let Some(e) = stepper.step() {
+            // the observer sees the final state too, so a bar or a log ends where the run did
+            observer.observe(&stepper.progress());
+            break e;
+        }
+        if observer.observe(&stepper.progress()) == Control::Stop {
+            break Ending::Interrupted;
+        }
+    };
+    (ending, start.elapsed().as_secs_f64())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::output::{Profiles, Summary};
+
+    /// Counts to `n` and ends at the end time, or breaks down at `bad`.
+    struct Counter {
+        n: u64,
+        end: u64,
+        bad: Option<u64>,
+    }
+
+    impl Stepper for Counter {
+        fn name(&self) -> &'static str {
+            "counter"
+        }
+        fn step(&mut self) -> Option<Ending> {
+            if Some(self.n + 1) == self.bad {
+                return Some(Ending::Unstable(Breakdown {
+                    time: self.n as f64,
+                    place: Place::Cell { index: 3, z: 0.5 },
+                    field: "phi".into(),
+                    value: f64::NAN,
+                    reason: "not finite".into(),
+                }));
+            }
+            self.n += 1;
+            (self.n >= self.end).then_some(Ending::EndTime)
+        }
+        fn progress(&self) -> Progress {
+            Progress {
+                phase: Phase::Flow,
+                time: self.n as f64,
+                end_time: self.end as f64,
+                steps: self.n,
+                dt: 1.0,
+                residual: None,
+            }
+        }
+        fn report(&self, ending: &Ending, _: f64) -> RunReport {
+            RunReport {
+                profiles: Profiles::default(),
+                summary: Summary::default(),
+                text: format!("{} after {}", ending.name(), self.n),
+            }
+        }
+    }
+
+    #[test]
+    fn the_driver_stops_on_the_end_on_a_breakdown_and_on_the_observer() {
+        let mut c = Counter { n: 0, end: 10, bad: None };
+        let (e, _) = drive(&mut c, &mut Quiet);
+        assert_eq!((e, c.n), (Ending::EndTime, 10));
+
+        let mut c = Counter { n: 0, end: 10, bad: Some(4) };
+        let (e, _) = drive(&mut c, &mut Quiet);
+        assert_eq!(c.n, 3, "the last good state is kept");
+        let b = e.breakdown().expect("a breakdown");
+        assert_eq!(b.to_string(), "t = 3.000000 s: phi = NaN in cell 3 (z = 0.500000 m): not finite");
+
+        let mut c = Counter { n: 0, end: 10, bad: None };
+        let mut seen = 0;
+        let mut stop_at_five = |p: &Progress| {
+            seen += 1;
+            if p.steps >= 5 {
+                Control::Stop
+            } else {
+                Control::Continue
+            }
+        };
+        let (e, _) = drive(&mut c, &mut stop_at_five);
+        assert_eq!((e.name(), c.n, seen), ("interrupted", 5, 5));
+    }
+}
