@@ -169,7 +169,7 @@ fn reference_data_files_have_the_named_numeric_columns() {
             // the shared data folder lives outside the repository; a checkout without it cannot
             // check the file, only the scene
             if !file.exists() {
-                eprintln!("{}: reference file {} not present, not checked", path.display(), file.display());
+                saltus_core::data::missing(&file, &format!("the reference file of {}", path.display()));
                 continue;
             }
             check_reference_file(&path, &file, &r.columns);

@@ -14,6 +14,7 @@
 //! `[closures.drag] type = "my_law"` and `saltus models` lists it.
 
 pub mod closure;
+pub mod data;
 pub mod error;
 pub mod needs;
 pub mod param;

@@ -285,7 +285,7 @@ fn chassagne_case01_against_dem(tolerance: f64) {
     assert!(m.mass_error() < 1e-10, "mass error {:e}", m.mass_error());
     let dem_file = root.join("../shared/data/chassagne_dem_bedload_sedfoam/BedloadTurbDEM.txt");
     let Ok(text) = std::fs::read_to_string(&dem_file) else {
-        eprintln!("skipping the DEM comparison: {} not found", dem_file.display());
+        saltus_core::data::missing(&dem_file, "the comparison with the coupled DEM");
         return;
     };
     let rows: Vec<Vec<f64>> = text
