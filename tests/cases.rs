@@ -46,7 +46,7 @@ fn scene_files() -> Vec<PathBuf> {
 }
 
 fn solver_type(scene: &Scene) -> Option<String> {
-    scene.solver.as_ref()?.get("type")?.as_str().map(str::to_string)
+    Some(scene.solver.kind.name().to_string())
 }
 
 fn load(path: &Path) -> Scene {

@@ -192,9 +192,9 @@ fn huge_time_steps_keep_k_and_omega_positive() {
     let text = std::fs::read_to_string(root().join("cases/verification/channel_re590.toml")).expect("scene");
     let t = parse_table(&text, Path::new("channel.toml")).expect("toml");
     let mut s = Scene::from_table(t, Path::new("channel.toml")).expect("scene");
-    s.solver.as_mut().expect("solver").insert("dt_initial".into(), toml::Value::Float(50.0));
-    s.solver.as_mut().expect("solver").insert("dt_max".into(), toml::Value::Float(1e3));
-    s.solver.as_mut().expect("solver").insert("max_steps".into(), toml::Value::Integer(40));
+    s.solver.eulerian.dt_initial = 50.0;
+    s.solver.eulerian.dt_max = 1e3;
+    s.solver.eulerian.max_steps = 40;
     let (m, ending, _) = run(&s);
     match ending {
         Ending::Unstable(b) => assert!(b.field == "k" || b.field == "omega" || b.field == "u_f", "{b}"),
