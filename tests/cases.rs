@@ -109,7 +109,6 @@ fn the_case_tree_holds_the_expected_scenes() {
         "verification/hindered_settling.toml",
         "verification/dry_mu_i_incline.toml",
         "verification/log_layer_mixing_length.toml",
-        "chassagne2023/dem_case01.toml",
         "maurin2015/frey_sim6.toml",
         "maurin2015/frey_sim14.toml",
         "maurin2015/frey_sim20.toml",
