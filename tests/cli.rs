@@ -45,6 +45,9 @@ fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
 }
 
 const BASE: &str = "[particles]\ndiameter = 6e-3\ndensity = 2500.0\n";
+/// What a scene without `[solver]` (the Eulerian by default) needs beyond [`BASE`] to pass
+/// `check`, which refuses what `run` would.
+const RUNNABLE: &str = "[domain]\nwater_depth = 0.1\ncells = 10\n[closures.granular]\ntype = \"mu_i\"\n";
 
 fn check_scene(name: &str, extra: &str) -> Output {
     let d = tmp_dir(name);
@@ -224,8 +227,10 @@ fn unmet_closure_need_names_both_models() {
     let err = assert_clean_failure(&check_scene("unmet_laminar", "[closures.fluctuation]\ntype = \"drw\"\n"));
     assert!(err.contains("drw") && err.contains("laminar"), "{err}");
     // DRW is satisfied by a mixing length (Reynolds stress)
-    let ok =
-        check_scene("met", "[closures.turbulence]\ntype = \"mixing_length\"\n[closures.fluctuation]\ntype = \"drw\"\n");
+    let ok = check_scene(
+        "met",
+        &format!("{RUNNABLE}[closures.turbulence]\ntype = \"mixing_length\"\n[closures.fluctuation]\ntype = \"drw\"\n"),
+    );
     assert!(ok.status.success(), "{}", stderr(&ok));
 }
 
@@ -420,7 +425,7 @@ const BAD_INPUTS: [(&str, &str); 16] = [
     ("solver.lagrangian=[1]", "solver.lagrangian"),
     ("solver.lagrangian.length=1e308", "solver.lagrangian.length"),
     ("particles.contact.law=\"sticky\"", "particles.contact.law"),
-    ("closures.granular.g0.a00=1", "closures.granular.g0.a00"),
+    ("closures.granular.g0={type=\"chialvo_sundaresan\", a00=1}", "closures.granular.g0.a00"),
     ("closures.turbulence.form=\"nope\"", "closures.turbulence.form"),
 ];
 
@@ -436,7 +441,10 @@ fn check_refuses_exactly_what_run_refuses() {
         assert!(!out.exists(), "run --set {set} started work before refusing");
     }
     // the same bad DEM inputs whichever solver is active: both tables are always checked
-    for (set, key) in [("solver.lagrangian.dt_safety=0.9", "solver.lagrangian.dt_safety"), ("solver.eulerian.eddy_relaxation=0", "solver.eulerian.eddy_relaxation")] {
+    for (set, key) in [
+        ("solver.lagrangian.dt_safety=0.9", "solver.lagrangian.dt_safety"),
+        ("solver.eulerian.eddy_relaxation=0", "solver.eulerian.eddy_relaxation"),
+    ] {
         for kind in ["eulerian", "lagrangian"] {
             let t = format!("solver.type={kind}");
             let check = assert_clean_failure(&saltus(&["check", CASE01, "--set", &t, "--set", set]));
@@ -445,7 +453,14 @@ fn check_refuses_exactly_what_run_refuses() {
     }
     // a DEM box over 1e7 particles is refused at load, not at allocation
     let err = assert_clean_failure(&saltus(&[
-        "check", CASE01, "--set", "solver.type=lagrangian", "--set", "solver.lagrangian.length=50", "--set", "solver.lagrangian.width=50",
+        "check",
+        CASE01,
+        "--set",
+        "solver.type=lagrangian",
+        "--set",
+        "solver.lagrangian.length=50",
+        "--set",
+        "solver.lagrangian.width=50",
     ]));
     assert!(err.contains("solver.lagrangian.length") && err.contains("particles"), "{err}");
 }
@@ -453,7 +468,8 @@ fn check_refuses_exactly_what_run_refuses() {
 #[test]
 fn closure_errors_name_the_full_key_path() {
     for (set, key) in [
-        ("closures.granular.g0.a00=1", "closures.granular.g0.a00"),
+        ("closures.granular.g0={type=\"chialvo_sundaresan\", a00=1}", "closures.granular.g0.a00"),
+        ("closures.granular.g0={type=\"chialvo_sundaresan\", a0=\"x\"}", "closures.granular.g0.a0"),
         ("closures.granular.saltation.c0=\"x\"", "closures.granular.saltation.c0"),
         ("closures.granular.phi_rlp=1.5", "closures.granular.phi_rlp"),
         ("closures.turbulence.form=\"nope\"", "closures.turbulence.form"),
@@ -474,7 +490,8 @@ fn grains_are_stated_once_and_the_kinetic_closure_inherits_or_overrides_them() {
         let o = saltus(&args);
         assert!(o.status.success(), "{}", stderr(&o));
         let text = stdout(&o);
-        let t: toml::Table = text.lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n").parse().unwrap();
+        let t: toml::Table =
+            text.lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n").parse().unwrap();
         t
     };
     let t = resolved(&["particles.restitution=0.9"]);
@@ -505,7 +522,8 @@ fn case01_switched_to_the_dem_resolves_the_derived_defaults() {
     // the buoyant weight, (bed + 3 d) 0.6 / (pi / 6 / 1.1^3) high
     let o = saltus(&["check", CASE01, "--set", "solver.type=lagrangian", "--set", "solver.lagrangian={}"]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let t: toml::Table = stdout(&o).lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n").parse().unwrap();
+    let t: toml::Table =
+        stdout(&o).lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n").parse().unwrap();
     let release = (0.075 + 3.0 * d) * 0.6 / (std::f64::consts::PI / 6.0 / 1.331);
     let expected = 3.0 * (2.0 * release / (9.81 * (1.0 - 1000.0 / 2500.0))).sqrt();
     let settle = t["solver"]["lagrangian"]["settle_time"].as_float().unwrap();
@@ -517,7 +535,14 @@ fn the_written_scene_reproduces_the_run_byte_for_byte_from_another_folder() {
     let d = tmp_dir("scene_reproduces");
     let first = d.join("first");
     let o = saltus(&[
-        "run", CASE01, "--set", "domain.cells=40", "--set", "solver.eulerian.end_time=0.5", "--out", first.to_str().unwrap(),
+        "run",
+        CASE01,
+        "--set",
+        "domain.cells=40",
+        "--set",
+        "solver.eulerian.end_time=0.5",
+        "--out",
+        first.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let elsewhere = d.join("elsewhere");
@@ -791,7 +816,7 @@ fn several_reference_files_with_a_z_offset() {
     write(&d, "b.txt", "0.0, 1.0\n0.02, 2.0\n");
     let extra = "[[reference]]\nfile = \"a.txt\"\ncolumns = [\"z\", \"phi\"]\nz_offset = 0.04\n\
                  [[reference]]\nfile = \"b.txt\"\ncolumns = [\"z\", \"u_p\"]\n";
-    let p = write(&d, "scene.toml", &format!("{BASE}{extra}"));
+    let p = write(&d, "scene.toml", &format!("{BASE}{RUNNABLE}{extra}"));
     let o = saltus(&["check", p.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stdout(&o).contains("z_offset = 0.04"), "{}", stdout(&o));

@@ -311,7 +311,8 @@ fn stretching_is_range_checked_and_refines_the_wall() {
     for bad in ["0.9", "1.5", "nan"] {
         saltus_closures::link();
         let file = root().join("cases/verification/channel_re590.toml");
-        let err = Scene::from_file_with(file, &[format!("domain.stretching={bad}")]).expect_err("out of range").to_string();
+        let err =
+            Scene::from_file_with(file, &[format!("domain.stretching={bad}")]).expect_err("out of range").to_string();
         assert!(err.contains("domain.stretching"), "{err}");
     }
     let s = load("cases/verification/channel_re590.toml", &["domain.cells=50".into(), "domain.stretching=1.1".into()]);

@@ -118,6 +118,13 @@ where
     };
     let mut params = table.clone();
     params.remove("type");
+    // serde reads a struct from an array too (by position): compare with the shape of
+    // the model's default, where every sub-table is a table
+    if let Ok(Ok(default)) = (entry.default_toml)().map(|t| t.parse::<toml::Table>()) {
+        if let Some((path, found)) = array_for_table(&params, &default) {
+            return Err(key_err(format!("{key}.{path}"), format!("expected a table, found {found}")));
+        }
+    }
     if let Err((path, message)) = (entry.check_toml)(toml::Value::Table(params.clone())) {
         let inner = refine(&params, &path, &message);
         let full = if inner.is_empty() { key.to_string() } else { format!("{key}.{inner}") };
@@ -127,6 +134,18 @@ where
     prepare(&mut model, &table);
     model.validate().map_err(|e| Error::from_param(file, key, e))?;
     Ok(model)
+}
+
+/// The first key of `given` holding something else than a table where `default` holds a
+/// table, with the type found.
+fn array_for_table(given: &toml::Table, default: &toml::Table) -> Option<(String, &'static str)> {
+    given.iter().find_map(|(k, v)| match (v, default.get(k)) {
+        (toml::Value::Table(g), Some(toml::Value::Table(d))) => {
+            array_for_table(g, d).map(|(path, found)| (format!("{k}.{path}"), found))
+        }
+        (other, Some(toml::Value::Table(_))) => Some((k.clone(), other.type_str())),
+        _ => None,
+    })
 }
 
 /// Finish a key path that serde stopped short of: inside an internally tagged enum
@@ -145,6 +164,16 @@ fn refine(params: &toml::Table, path: &str, message: &str) -> String {
         here.contains_key(quoted).then(|| quoted.to_string())
     } else if message.starts_with("unknown variant") {
         here.iter().find(|(_, v)| v.as_str() == Some(quoted)).map(|(k, _)| k.clone())
+    } else if message.starts_with("invalid type") || message.starts_with("invalid value") {
+        // serde names the offending value as it found it: `string "x"`, `integer `3``, ...
+        let shown = |v: &toml::Value| match v {
+            toml::Value::String(s) => Some(format!("string {s:?}")),
+            toml::Value::Integer(i) => Some(format!("integer `{i}`")),
+            toml::Value::Float(f) => Some(format!("floating point `{f}`")),
+            toml::Value::Boolean(b) => Some(format!("boolean `{b}`")),
+            _ => None,
+        };
+        here.iter().find(|(_, v)| shown(v).is_some_and(|t| message.contains(&t))).map(|(k, _)| k.clone())
     } else {
         None
     };

@@ -6,7 +6,7 @@
 //! TOML syntax (line and column) -> tables where tables are expected -> base tables
 //! (serde_path_to_error) -> ranges of every key -> each closure table on its own (model
 //! name checked against the registry first, parameters with their full path) -> derived
-//! defaults -> what the active solver needs -> closure needs. `saltus check` and
+//! defaults -> closure needs -> what the active solver needs. `saltus check` and
 //! `saltus run` both go through [`Scene::from_file_with`], so they refuse the same
 //! scenes.
 
@@ -207,8 +207,8 @@ impl Scene {
             path: file.to_path_buf(),
         };
         scene.resolve()?;
-        scene.check_active()?;
         scene.check_needs()?;
+        scene.check_active()?;
         Ok(scene)
     }
 
