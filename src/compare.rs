@@ -371,14 +371,18 @@ fn run_variant(cmp: &Comparison, v: &Variant, out: &Path, bars: &MultiProgress) 
     let mut run =
         VariantRun { name: v.name.clone(), dir: dir.clone(), report: None, error: None, warnings: Vec::new() };
     let sets: Vec<String> = cmp.set.iter().chain(&v.set).cloned().collect();
-    let loaded = Scene::from_file_with(&cmp.base, &sets).and_then(|s| saltus_solvers::validate(&s).map(|()| s));
-    let mut scene = match loaded {
+    // the same checks as `saltus check` and `saltus run`, before any work
+    let mut scene = match Scene::from_file_with(&cmp.base, &sets) {
         Ok(s) => s,
         Err(e) => {
             run.error = Some(format!("{e}"));
             return run;
         }
     };
+    if let Err(e) = saltus_solvers::validate(&scene) {
+        run.error = Some(format!("{e}"));
+        return run;
+    }
     // the variant's own name in its summary.json, scene.toml and figure title
     scene.meta.name = format!("{} [{}]", scene.meta.name, v.name);
     let bar = bars.add(ProgressBar::hidden());

@@ -353,7 +353,7 @@ impl LagrangianSettings {
                 self.particle_list.len() as f64
             }
         };
-        if !(mobile <= MAX_PARTICLES) {
+        if mobile.is_nan() || mobile > MAX_PARTICLES {
             return Err(key_error(
                 f,
                 &p("length"),
