@@ -11,10 +11,16 @@ use saltus_solvers::lagrangian::{Config, Lagrangian};
 
 fn coupled_step(c: &mut Criterion) {
     saltus_closures::link();
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/chassagne2023/dem_case01.toml");
-    let scene =
-        Scene::from_file_with(&file, &["solver.settle_time=0.4".to_string(), "solver.end_time=1e9".to_string()])
-            .expect("dem_case01");
+    // case 1 in the DEM, as in compare_case01_solvers.toml
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/chassagne2023/case01.toml");
+    let sets = [
+        "solver.type=lagrangian",
+        "closures.turbulence={type=\"mixing_length\", form=\"li_sawamoto\", phi_max=0.61}",
+        "solver.lagrangian.settle_time=0.4",
+        "solver.lagrangian.end_time=1e9",
+    ]
+    .map(String::from);
+    let scene = Scene::from_file_with(&file, &sets).expect("case01 in the DEM");
     let mut group = c.benchmark_group("dem_coupled_step");
     group.sample_size(30);
     for threads in [1usize, 2] {

@@ -1,5 +1,5 @@
 //! `saltus compare`: one base scene, several variants of it (each a list of `--set`
-//! overrides), run in parallel; one table of their summaries with their RMS differences
+//! overrides, after those of the command line), run in parallel; one table of their summaries with their RMS differences
 //! from the base scene's reference data, and one figure of their profiles over that data.
 //!
 //! ```toml
@@ -37,7 +37,8 @@ pub const TABLE: &str = "comparison.csv";
 pub const FIGURE: &str = "comparison.png";
 
 /// Columns of the comparison table, after `variant` and before `error`.
-pub const COLUMNS: [&str; 10] = [
+pub const COLUMNS: [&str; 11] = [
+    "solver",
     "qs_star",
     "qs",
     "shields",
@@ -82,6 +83,8 @@ pub struct Comparison {
     pub meta: Meta,
     /// variants, in file order, at least one
     pub variants: Vec<Variant>,
+    /// `KEY=VALUE` overrides of the command line, applied to every variant before its own
+    pub set: Vec<String>,
 }
 
 /// Lower-case letters and digits of `name`, other runs of characters replaced by `-`.
@@ -102,8 +105,9 @@ fn key_error(file: &Path, key: impl Into<String>, message: impl Into<String>) ->
 }
 
 /// Read and check a compare file: TOML syntax, keys, variant names, and the base scene
-/// (loaded once without overrides, so that a broken base fails before any run).
-pub fn load(path: &Path) -> anyhow::Result<Comparison> {
+/// (loaded once with the command line's overrides `set` only, so that a broken base fails
+/// before any run).
+pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Comparison> {
     let text = std::fs::read_to_string(path).map_err(|source| Error::Io { file: path.into(), source })?;
     let table = parse_table(&text, path)?;
     let raw: RawFile = de_path(toml::Value::Table(table), path, "")?;
@@ -133,12 +137,13 @@ pub fn load(path: &Path) -> anyhow::Result<Comparison> {
     if !base.is_file() {
         return Err(key_error(path, "base", format!("`{}`: no such scene file ({})", raw.base, base.display())));
     }
-    Scene::from_file(&base).map_err(|e| key_error(path, "base", format!("the base scene is invalid: {e}")))?;
+    Scene::from_file_with(&base, set)
+        .map_err(|e| key_error(path, "base", format!("the base scene is invalid: {e}")))?;
     let mut meta = raw.meta;
     if meta.name.is_empty() {
         meta.name = path.file_stem().map_or_else(|| "comparison".into(), |s| s.to_string_lossy().into_owned());
     }
-    Ok(Comparison { file: path.to_path_buf(), base, meta, variants: raw.variants })
+    Ok(Comparison { file: path.to_path_buf(), base, meta, variants: raw.variants, set: set.to_vec() })
 }
 
 /// Output folder when `--out` is not given: `out/<meta.name>`.
@@ -256,6 +261,7 @@ impl CompareReport {
 fn summary_cells(s: &saltus_solvers::Summary, precise: bool) -> Vec<String> {
     if precise {
         return vec![
+            s.solver.clone(),
             format!("{:?}", s.qs_star),
             format!("{:?}", s.qs),
             format!("{:?}", s.shields),
@@ -269,6 +275,7 @@ fn summary_cells(s: &saltus_solvers::Summary, precise: bool) -> Vec<String> {
         ];
     }
     vec![
+        s.solver.clone(),
         format!("{:.4}", s.qs_star),
         format!("{:.4e}", s.qs),
         format!("{:.3}", s.shields),
@@ -302,7 +309,8 @@ pub fn run(cmp: &Comparison, out: &Path, progress: bool) -> anyhow::Result<Compa
     }
     // reference data of the base scene: RMS columns of the table, symbols of the figure
     let png = out.join(FIGURE);
-    let base = Scene::from_file(&cmp.base).with_context(|| format!("{}: key `base`", cmp.file.display()))?;
+    let base =
+        Scene::from_file_with(&cmp.base, &cmp.set).with_context(|| format!("{}: key `base`", cmp.file.display()))?;
     let reference = match runner::load_reference(&base) {
         Ok(r) => r,
         Err(e) => {
@@ -362,13 +370,19 @@ fn run_variant(cmp: &Comparison, v: &Variant, out: &Path, bars: &MultiProgress) 
     let dir = out.join(slug(&v.name));
     let mut run =
         VariantRun { name: v.name.clone(), dir: dir.clone(), report: None, error: None, warnings: Vec::new() };
-    let mut scene = match Scene::from_file_with(&cmp.base, &v.set) {
+    let sets: Vec<String> = cmp.set.iter().chain(&v.set).cloned().collect();
+    // the same checks as `saltus check` and `saltus run`, before any work
+    let mut scene = match Scene::from_file_with(&cmp.base, &sets) {
         Ok(s) => s,
         Err(e) => {
             run.error = Some(format!("{e}"));
             return run;
         }
     };
+    if let Err(e) = saltus_solvers::validate(&scene) {
+        run.error = Some(format!("{e}"));
+        return run;
+    }
     // the variant's own name in its summary.json, scene.toml and figure title
     scene.meta.name = format!("{} [{}]", scene.meta.name, v.name);
     let bar = bars.add(ProgressBar::hidden());

@@ -55,6 +55,10 @@ enum Command {
     Compare {
         /// compare file: `base` scene, `[meta]`, `[[variant]]` tables with `name` and `set`
         file: PathBuf,
+        /// override one key of every variant, before the variant's own (repeatable), e.g.
+        /// --set solver.lagrangian.end_time=1
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
         /// output folder (default: out/<meta.name>); each variant writes into a folder of
         /// its own inside it
         #[arg(long)]
@@ -143,6 +147,14 @@ fn parse_family(name: &str) -> anyhow::Result<Family> {
     })
 }
 
+/// A scene checked whole: the schema at load, then what its solver needs to start. `check`
+/// and `run` both load through here, so they refuse the same scenes.
+fn load(scene: &std::path::Path, set: &[String]) -> anyhow::Result<Scene> {
+    let s = Scene::from_file_with(scene, set)?;
+    saltus_solvers::validate(&s)?;
+    Ok(s)
+}
+
 fn run(cli: Cli) -> anyhow::Result<()> {
     saltus::ensure_registry()?;
     match cli.command {
@@ -155,12 +167,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
         }
         Command::Check { scene, set } => {
-            let s = Scene::from_file_with(&scene, &set)?;
+            let s = load(&scene, &set)?;
             outln!("# {} resolved: every default filled in, ranges and closure needs checked", scene.display());
             out!("{}", s.to_toml()?);
         }
         Command::Run { scene, set, out } => {
-            let s = Scene::from_file_with(&scene, &set)?;
+            let s = load(&scene, &set)?;
             let out = out.unwrap_or_else(|| saltus::runner::default_out(&s));
             let bar = saltus::runner::progress_bar(std::io::stderr().is_terminal());
             let outcome = saltus::runner::run_scene(&s, &out, &bar);
@@ -181,8 +193,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 outln!("figure:  {}", png.display());
             }
         }
-        Command::Compare { file, out } => {
-            let cmp = saltus::compare::load(&file)?;
+        Command::Compare { file, set, out } => {
+            let cmp = saltus::compare::load(&file, &set)?;
             let out = out.unwrap_or_else(|| saltus::compare::default_out(&cmp));
             let report = saltus::compare::run(&cmp, &out, std::io::stderr().is_terminal())?;
             for w in &report.warnings {

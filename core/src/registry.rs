@@ -19,6 +19,9 @@ pub struct ModelEntry {
     pub default: fn() -> Box<dyn Describe>,
     /// default instance serialised as a TOML table (with its `type`), for round trips
     pub default_toml: fn() -> Result<String, String>,
+    /// deserialise the model's parameters (its table without `type`) as the concrete
+    /// type: the key path and message of the first error, which typetag loses
+    pub check_toml: fn(toml::Value) -> Result<(), (String, String)>,
 }
 
 inventory::collect!(ModelEntry);
@@ -56,6 +59,7 @@ macro_rules! register_model {
                         ::std::boxed::Box::new(<$ty as ::std::default::Default>::default());
                     $crate::scene::to_toml_table(&b)
                 },
+                check_toml: $crate::scene::de_concrete::<$ty>,
             }
         }
     };

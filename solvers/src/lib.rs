@@ -14,6 +14,7 @@ pub mod eulerian;
 pub mod lagrangian;
 pub mod output;
 pub mod run;
+pub mod validate;
 
 use std::fmt;
 use std::path::Path;
@@ -24,6 +25,7 @@ use saltus_core::Error;
 
 pub use eulerian::Progress;
 pub use output::{Profiles, Summary};
+pub use validate::validate;
 
 /// Solvers the program knows, with whether this build implements them.
 pub const SOLVERS: [(&str, bool); 2] = [("eulerian", true), ("lagrangian", true)];
@@ -45,25 +47,9 @@ impl fmt::Display for RunReport {
     }
 }
 
-/// Name of the scene's solver, checked against [`SOLVERS`].
+/// Name of the scene's solver (`[solver] type`, checked when the scene was loaded).
 pub fn solver_name(scene: &Scene) -> Result<&str, Error> {
-    let file = scene.path.display();
-    let solver = scene.solver.as_ref().and_then(|t| t.get("type")).and_then(|v| v.as_str()).ok_or_else(|| {
-        Error::Invalid(format!(
-            "{file}: key `solver.type`: missing; known solvers: {}",
-            SOLVERS.map(|s| s.0).join(", ")
-        ))
-    })?;
-    match SOLVERS.iter().find(|s| s.0 == solver) {
-        None => Err(Error::Invalid(format!(
-            "{file}: key `solver.type`: unknown solver `{solver}`; known: {}",
-            SOLVERS.map(|s| s.0).join(", ")
-        ))),
-        Some((_, false)) => Err(Error::Invalid(format!(
-            "{file}: solver `{solver}` is not implemented in this version yet; use `solver.type = \"eulerian\"`"
-        ))),
-        Some(_) => Ok(solver),
-    }
+    Ok(scene.solver.kind.name())
 }
 
 /// Run `scene`, writing its outputs into `out`. `observer` sees every accepted step and

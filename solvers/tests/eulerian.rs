@@ -43,6 +43,7 @@ top = \"lid\"
 lid_velocity = 0.02
 [solver]
 type = \"eulerian\"
+[solver.eulerian]
 steady_tolerance = 1e-13
 dt_max = 1e4
 end_time = 1e6
@@ -69,6 +70,7 @@ water_depth = {h}
 cells = 25
 [solver]
 type = \"eulerian\"
+[solver.eulerian]
 steady_tolerance = 1e-13
 dt_max = 1e4
 end_time = 1e6
@@ -114,6 +116,7 @@ suspension_phi = {phi0}
 cells = 400
 [solver]
 type = \"eulerian\"
+[solver.eulerian]
 end_time = 1.0
 dt_max = 2e-3
 ",
@@ -382,6 +385,7 @@ water_depth = {h_w}
 cells = {cells}
 [solver]
 type = \"eulerian\"
+[solver.eulerian]
 end_time = 30.0
 ",
             rho_p = 1000.0 * r,

@@ -194,9 +194,9 @@ fn huge_time_steps_keep_k_and_omega_positive() {
     let text = std::fs::read_to_string(root().join("cases/verification/channel_re590.toml")).expect("scene");
     let t = parse_table(&text, Path::new("channel.toml")).expect("toml");
     let mut s = Scene::from_table(t, Path::new("channel.toml")).expect("scene");
-    s.solver.as_mut().expect("solver").insert("dt_initial".into(), toml::Value::Float(50.0));
-    s.solver.as_mut().expect("solver").insert("dt_max".into(), toml::Value::Float(1e3));
-    s.solver.as_mut().expect("solver").insert("max_steps".into(), toml::Value::Integer(40));
+    s.solver.eulerian.dt_initial = 50.0;
+    s.solver.eulerian.dt_max = 1e3;
+    s.solver.eulerian.max_steps = 40;
     let (m, ending, _) = run(&s);
     match ending {
         Ending::Unstable(b) => assert!(b.field == "k" || b.field == "omega" || b.field == "u_f", "{b}"),
@@ -311,8 +311,10 @@ fn revil_baudard_turbulence_models() {
 #[test]
 fn stretching_is_range_checked_and_refines_the_wall() {
     for bad in ["0.9", "1.5", "nan"] {
-        let s = load("cases/verification/channel_re590.toml", &[format!("domain.stretching={bad}")]);
-        let err = Config::from_scene(&s).expect_err("out of range").to_string();
+        saltus_closures::link();
+        let file = root().join("cases/verification/channel_re590.toml");
+        let err =
+            Scene::from_file_with(file, &[format!("domain.stretching={bad}")]).expect_err("out of range").to_string();
         assert!(err.contains("domain.stretching"), "{err}");
     }
     let s = load("cases/verification/channel_re590.toml", &["domain.cells=50".into(), "domain.stretching=1.1".into()]);

@@ -30,7 +30,7 @@ fn run_to_end(m: &mut Lagrangian<'_>) {
 fn head_on_collision_gives_the_restitution_coefficient() {
     // v_rel before = 0.2 m/s; e = -(v2' - v1') / (v2 - v1), within 1 % for e from 0.3 to 0.95
     for e in [0.3, 0.5, 0.7, 0.95] {
-        let s = scene("verification/dem_binary_collision.toml", &[&format!("solver.restitution={e}")]);
+        let s = scene("verification/dem_binary_collision.toml", &[&format!("particles.restitution={e}")]);
         let mut m = model(&s);
         run_to_end(&mut m);
         let p = &m.dem.p;
@@ -70,7 +70,7 @@ fn elastic_frictionless_gas_conserves_energy() {
     // scheme up to its O(dt^2) oscillation. 1000 spheres, about 3 collisions each.
     let s = scene(
         "verification/dem_homogeneous_cooling.toml",
-        &["solver.restitution=1.0", "solver.end_time=0.25", "domain.gas_temperature=0.04"],
+        &["particles.restitution=1.0", "solver.lagrangian.end_time=0.25", "solver.lagrangian.gas_temperature=0.04"],
     );
     let mut m = model(&s);
     m.start().expect("start");
@@ -154,18 +154,21 @@ fn homogeneous_cooling_follows_haff_with_the_kinetic_theory_rate() {
 /// A coupled bedload run small enough for CI: 10 d x 10 d cell, 6 d bed, DRW on.
 fn small_bed(set: &[&str]) -> Scene {
     let mut all = vec![
-        "domain.length=0.06",
-        "domain.width=0.06",
+        "solver.type=lagrangian",
+        // the mixing length of the DEM set-up (compare_case01_solvers.toml)
+        "closures.turbulence={type=\"mixing_length\", form=\"li_sawamoto\", phi_max=0.61}",
+        "solver.lagrangian.length=0.06",
+        "solver.lagrangian.width=0.06",
         "domain.bed_height=0.036",
         "domain.water_depth=0.03",
-        "domain.cells=120",
-        "solver.settle_time=0.1",
-        "solver.end_time=0.1",
-        "solver.stats_start=0.0",
+        "solver.lagrangian.cells=120",
+        "solver.lagrangian.settle_time=0.1",
+        "solver.lagrangian.end_time=0.1",
+        "solver.lagrangian.stats_start=0.0",
         "closures.fluctuation={type=\"drw\"}",
     ];
     all.extend_from_slice(set);
-    scene("chassagne2023/dem_case01.toml", &all)
+    scene("chassagne2023/case01.toml", &all)
 }
 
 fn state_in_pool(s: &Scene, threads: usize) -> (Vec<u64>, usize) {
@@ -234,11 +237,11 @@ fn hertz_collision_restitution_is_close_to_e() {
         let s = scene(
             "verification/dem_binary_collision.toml",
             &[
-                &format!("solver.restitution={e}"),
-                "solver.contact=\"hertz\"",
-                "solver.young=1e7",
-                "solver.poisson=0.3",
-                "solver.dt_safety=0.01",
+                &format!("particles.restitution={e}"),
+                "particles.contact.law=\"hertz\"",
+                "particles.contact.young=1e7",
+                "particles.contact.poisson=0.3",
+                "solver.lagrangian.dt_safety=0.01",
             ],
         );
         let mut m = model(&s);
@@ -253,19 +256,20 @@ fn hertz_collision_restitution_is_close_to_e() {
 fn bad_keys_are_refused_with_file_key_and_range() {
     saltus_closures::link();
     for (set, key) in [
-        ("solver.restitution=1.5", "solver.restitution"),
-        ("domain.length=0.001", "domain.length"),
-        ("solver.dt_safety=0.9", "solver.dt_safety"),
+        ("particles.restitution=1.5", "particles.restitution"),
+        ("solver.lagrangian.length=0.001", "solver.lagrangian.length"),
+        ("solver.lagrangian.dt_safety=0.9", "solver.lagrangian.dt_safety"),
         ("domain.bed_height=-1.0", "domain.bed_height"),
-        ("solver.stifness=1.0", "solver.stifness"),
-        ("domain.bottom=\"sand\"", "domain.bottom"),
+        ("solver.lagrangian.stifness=1.0", "solver.lagrangian.stifness"),
+        ("solver.lagrangian.bottom=\"sand\"", "solver.lagrangian.bottom"),
     ] {
-        let s = Scene::from_file_with(case("chassagne2023/dem_case01.toml"), &[set.to_string()]);
+        let sets = ["solver.type=lagrangian".to_string(), set.to_string()];
+        let s = Scene::from_file_with(case("chassagne2023/case01.toml"), &sets);
         let msg = match s {
             Err(e) => e.to_string(),
             Ok(s) => Config::from_scene(&s).err().map(|e| e.to_string()).unwrap_or_default(),
         };
-        assert!(msg.contains("dem_case01.toml") && msg.contains(key), "{set}: {msg}");
+        assert!(msg.contains("case01.toml") && msg.contains(key), "{set}: {msg}");
     }
 }
 
@@ -296,7 +300,7 @@ fn k_omega_column_feeds_the_eddy_interaction_model() {
     // drawn fluctuations are non-zero and bounded by a few sqrt(2k/3)
     let s = small_bed(&[
         "domain.water_depth=0.06",
-        "solver.end_time=1.0",
+        "solver.lagrangian.end_time=1.0",
         "closures.turbulence={type=\"k_omega\", wall=\"rough\"}",
         "closures.fluctuation={type=\"eim\"}",
     ]);

@@ -95,8 +95,8 @@ impl<'de> Deserialize<'de> for StaticFriction {
 ///
 /// * Source: Chassagne, Bonamy & Chauchat 2023 (J. Fluid Mech. 964, A27) eqs 2.12-2.25,
 ///   table 1, 3.2-3.13, App. B (mu_s), C (e_eff), D (c_J).
-/// * Defaults = the paper's PROPOSED model (table 1 right column): `restitution = 0.7`,
-///   `friction = 0.4`, `p0 = 0.05` Pa, `phi_rlp = 0.57`, `phi_max = 0.635`,
+/// * Defaults = the paper's PROPOSED model (table 1 right column): `restitution` and
+///   `friction` those of `[particles]` (0.7 and 0.4 by default), `p0 = 0.05` Pa, `phi_rlp = 0.57`, `phi_max = 0.635`,
 ///   `static_friction = "from_mu_p"` (0.36), `g0 = { type = "chialvo_sundaresan_friction" }`,
 ///   `restitution_model = { type = "jenkins_zhang", e_t = 0 }`,
 ///   `saltation = { enabled = true, c0 = 5, sigma = 0.5 }`, `drag_dissipation = "quadratic"`.
@@ -315,6 +315,17 @@ impl KineticTheory for FrictionalCollisional {
 impl GranularStress for FrictionalCollisional {
     fn as_kinetic(&self) -> Option<&dyn KineticTheory> {
         Some(self)
+    }
+
+    // the grains' restitution and friction are stated once, in [particles]; this model's
+    // own keys override them for the continuum description only
+    fn inherit(&mut self, given: &toml::Table, particles: &saltus_core::scene::Particles) {
+        if !given.contains_key("restitution") {
+            self.restitution = particles.restitution;
+        }
+        if !given.contains_key("friction") {
+            self.friction = particles.friction;
+        }
     }
 }
 

@@ -224,6 +224,10 @@ pub trait GranularStress: Describe + Send + Sync + std::fmt::Debug {
     fn as_kinetic(&self) -> Option<&dyn KineticTheory> {
         None
     }
+    /// Take the grain properties this closure does not set itself from `[particles]`;
+    /// `given` is the closure's own table, to tell a key set from a default. Called once
+    /// at load, before the range check, so that the resolved scene shows the values used.
+    fn inherit(&mut self, _given: &toml::Table, _particles: &crate::scene::Particles) {}
     /// Fields this closure makes available to others (granular temperature for kinetic
     /// theory).
     fn provides(&self) -> Needs {

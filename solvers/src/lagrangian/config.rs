@@ -1,161 +1,54 @@
-//! The `[domain]` and `[solver]` tables of a Lagrangian scene, typed and checked.
+//! The Lagrangian view of a scene: `[domain]`, `[particles]` and `[solver.lagrangian]`,
+//! typed and checked at load by [`saltus_core::scene`]; here only gathered into the
+//! numbers the DEM uses.
 
-use std::path::Path;
-
-use saltus_core::scene::{check, domain_and_solver, Scene};
-use saltus_core::{Error, ParamRange};
-use serde::{Deserialize, Serialize};
+use saltus_core::scene::{Scene, DEM_BED_PHI};
+use saltus_core::Error;
 
 use super::contact::ContactModel;
 
-/// What is below the particles.
-#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum Bottom {
-    /// a layer of fixed particles from a random deposition (Maurin 2015 section IV), above
-    /// a flat wall at z = 0
-    #[default]
-    Rough,
-    /// a flat frictional wall at z = 0
-    Wall,
-    /// nothing (free fall)
-    None,
-    /// periodic in z with period `domain.height`
-    Periodic,
-}
+pub use saltus_core::scene::{Bottom, FluidMode, Initial, ParticleSpec, Surface};
 
-/// How the particles start.
-#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum Initial {
-    /// a bed deposited under gravity (jittered lattice released and settled for
-    /// `solver.settle_time`)
-    #[default]
-    Bed,
-    /// a homogeneous gas: cubic lattice at `gas_phi` with Gaussian velocities of
-    /// temperature `gas_temperature`
-    Gas,
-    /// the particles listed in `[[domain.particle]]`
-    List,
-}
-
-/// How the fluid acts.
-#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum FluidMode {
-    /// drag and buoyancy, the column solved every `fluid_period` (Maurin 2015)
-    #[default]
-    Coupled,
-    /// drag and buoyancy from a fluid at rest (the column is not solved)
-    Still,
-    /// dry granular: no drag, no buoyancy
-    Off,
-}
-
-/// Where the free surface is put.
-#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum Surface {
-    /// `water_depth` above the surface of the deposited bed, measured after the
-    /// deposition (the level where the packing falls to half its bulk value): the water
-    /// depth of the Shields number is the one asked whatever the packing of the deposit
-    #[default]
-    Deposit,
-    /// `bed_height + water_depth` above the top of the rough layer
-    Nominal,
-}
-
-/// One particle of `initial = "list"`.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct ParticleSpec {
-    /// centre (m)
-    pub position: [f64; 3],
-    /// velocity (m/s)
-    #[serde(default)]
-    pub velocity: [f64; 3],
-    /// angular velocity (rad/s)
-    #[serde(default)]
-    pub angular_velocity: [f64; 3],
-    /// fixed in space
-    #[serde(default)]
-    pub fixed: bool,
-}
-
-/// `[domain]` of a Lagrangian scene. Lengths in metres.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
+/// The box and the particles. Lengths in metres.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Domain {
     /// streamwise period L_x (m)
     pub length: f64,
     /// spanwise period L_y (m), or channel width with `side_walls`
     pub width: f64,
-    /// flat frictional walls at y = 0 and y = width instead of a periodic y (quasi-2D
-    /// channels)
-    #[serde(default)]
+    /// flat frictional walls at y = 0 and y = width instead of a periodic y
     pub side_walls: bool,
     /// what is below the particles
-    #[serde(default)]
     pub bottom: Bottom,
     /// z period (bottom = "periodic") or height of the box the gas fills (m)
-    #[serde(default)]
     pub height: f64,
     /// how particles start
-    #[serde(default)]
     pub initial: Initial,
-    /// thickness of the mobile bed at rest (m), above the rough layer; sets the number of
-    /// mobile particles with `bed_phi`
-    #[serde(default)]
+    /// thickness of the mobile bed at rest (m), above the rough layer
     pub bed_height: f64,
     /// packing used to count the particles of the bed
-    #[serde(default = "default_bed_phi")]
     pub bed_phi: f64,
-    /// number of mobile particles; overrides the count from `bed_height` (bed) or
-    /// `gas_phi` (gas)
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// number of mobile particles; overrides the count from `bed_height` or `gas_phi`
     pub particles: Option<usize>,
     /// thickness of the fixed rough layer, in particle diameters
-    #[serde(default = "default_rough_layer")]
     pub rough_layer: f64,
-    /// clear water above the bed at rest (m); the fluid column spans bed_height +
-    /// water_depth from the top of the rough layer (z = rough_layer d)
-    #[serde(default)]
+    /// clear water above the bed at rest (m)
     pub water_depth: f64,
-    /// cells of the fluid column (its nominal height bed_height + water_depth; with
-    /// `surface = "deposit"` the cell size is kept and the count follows the column)
-    #[serde(default = "default_cells")]
+    /// cells of the fluid column
     pub cells: usize,
     /// where the free surface is put (deposited beds)
-    #[serde(default)]
     pub surface: Surface,
     /// volume fraction of the gas (initial = "gas")
-    #[serde(default)]
     pub gas_phi: f64,
     /// granular temperature of the gas (m^2/s^2)
-    #[serde(default)]
     pub gas_temperature: f64,
     /// particles of `initial = "list"`
-    #[serde(default, rename = "particle", skip_serializing_if = "Vec::is_empty")]
     pub particle_list: Vec<ParticleSpec>,
 }
 
-fn default_bed_phi() -> f64 {
-    0.6
-}
-fn default_rough_layer() -> f64 {
-    1.0
-}
-fn default_cells() -> usize {
-    100
-}
-
-/// `[solver]` of `type = "lagrangian"`.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields, default)]
+/// The DEM's numerics and contact law.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Settings {
-    /// solver name, `lagrangian`
-    #[serde(rename = "type")]
-    pub kind: String,
     /// simulated time of the run after the deposition (s)
     pub end_time: f64,
     /// contact law
@@ -172,8 +65,7 @@ pub struct Settings {
     pub restitution: f64,
     /// particle friction coefficient mu_p
     pub friction: f64,
-    /// time step over the contact time pi sqrt(m / (2 k_n)) (linear) or the Rayleigh time
-    /// (Hertz)
+    /// time step over the contact time
     pub dt_safety: f64,
     /// Verlet skin over d
     pub skin: f64,
@@ -187,8 +79,7 @@ pub struct Settings {
     pub stats_start: f64,
     /// averaging window of the steady-state test (s)
     pub steady_window: f64,
-    /// steady when the window-averaged transport rate changes by less than this
-    /// fraction between consecutive windows
+    /// relative change of the window-averaged transport rate called steady
     pub steady_tolerance: f64,
     /// consecutive windows under the tolerance
     pub steady_windows: usize,
@@ -202,35 +93,6 @@ pub struct Settings {
     pub max_steps: u64,
 }
 
-impl Default for Settings {
-    fn default() -> Self {
-        Self {
-            kind: "lagrangian".into(),
-            end_time: 10.0,
-            contact: ContactModel::Linear,
-            stiffness: 1.0e4,
-            tangential_ratio: 1.0,
-            young: 1.0e7,
-            poisson: 0.3,
-            restitution: 0.7,
-            friction: 0.4,
-            dt_safety: 0.05,
-            skin: 0.1,
-            fluid: FluidMode::Coupled,
-            fluid_period: 1.0e-2,
-            settle_time: 0.5,
-            stats_start: 0.0,
-            steady_window: 1.0,
-            steady_tolerance: 0.05,
-            steady_windows: 3,
-            stop_when_steady: false,
-            threads: 0,
-            vtk_period: 0.0,
-            max_steps: 1_000_000_000_000,
-        }
-    }
-}
-
 /// Checked configuration of one Lagrangian run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Config {
@@ -241,108 +103,70 @@ pub struct Config {
 }
 
 impl Config {
-    /// Read `[domain]` and `[solver]` of `scene`, with errors that name the file and key.
+    /// The DEM configuration of `scene`, whatever its active solver. A derived default
+    /// the scene could not fill (no gravity, say) is refused here with its key.
     pub fn from_scene(scene: &Scene) -> Result<Config, Error> {
-        let file = scene.path.as_path();
-        let (domain, settings): (Domain, Settings) =
-            domain_and_solver(scene, "a Lagrangian scene needs at least length and width")?;
-        let cfg = Config { domain, settings };
-        cfg.check(file, scene.particles.diameter)?;
-        Ok(cfg)
-    }
-
-    fn check(&self, file: &Path, d: f64) -> Result<(), Error> {
-        let key = |k: &str, m: String| Error::Key { file: file.into(), key: k.into(), message: m };
-        let dm = &self.domain;
-        let s = &self.settings;
-        let cut = d * (1.0 + s.skin);
-        // minimum image: a particle must not meet two images of another
-        check(file, "domain.length", dm.length, ParamRange::closed(2.0 * cut + 1e-12, f64::MAX))?;
-        if dm.side_walls {
-            check(file, "domain.width", dm.width, ParamRange::closed(d, f64::MAX))?;
-        } else {
-            check(file, "domain.width", dm.width, ParamRange::closed(2.0 * cut + 1e-12, f64::MAX))?;
-        }
-        if dm.bottom == Bottom::Periodic {
-            check(file, "domain.height", dm.height, ParamRange::closed(2.0 * cut + 1e-12, f64::MAX))?;
-            if s.fluid == FluidMode::Coupled {
-                return Err(key(
-                    "solver.fluid",
-                    "a z-periodic box has no fluid column; use fluid = \"off\" or \"still\"".into(),
-                ));
-            }
-        }
-        check(file, "domain.bed_height", dm.bed_height, ParamRange::non_negative())?;
-        check(file, "domain.bed_phi", dm.bed_phi, ParamRange::open_closed(0.0, 0.74))?;
-        check(file, "domain.rough_layer", dm.rough_layer, ParamRange::closed(0.5, 10.0))?;
-        check(file, "domain.water_depth", dm.water_depth, ParamRange::non_negative())?;
-        check(file, "domain.cells", dm.cells as f64, ParamRange::closed(2.0, 1_000_000.0))?;
-        match dm.initial {
-            Initial::Bed => {
-                if dm.particles.is_none() && dm.bed_height <= 0.0 {
-                    return Err(key(
-                        "domain.bed_height",
-                        "initial = \"bed\" needs bed_height > 0 (m) or particles = N".into(),
-                    ));
-                }
-                if dm.bottom == Bottom::None || dm.bottom == Bottom::Periodic {
-                    return Err(key("domain.bottom", "a deposited bed needs bottom = \"rough\" or \"wall\"".into()));
-                }
-            }
-            Initial::Gas => {
-                check(file, "domain.gas_phi", dm.gas_phi, ParamRange::open(0.0, 0.5))?;
-                check(file, "domain.gas_temperature", dm.gas_temperature, ParamRange::positive())?;
-                check(file, "domain.height", dm.height, ParamRange::closed(2.0 * cut + 1e-12, f64::MAX))?;
-            }
-            Initial::List => {
-                if dm.particle_list.is_empty() {
-                    return Err(key("domain.particle", "initial = \"list\" needs [[domain.particle]] entries".into()));
-                }
-                for (k, p) in dm.particle_list.iter().enumerate() {
-                    for v in p.position.iter().chain(&p.velocity).chain(&p.angular_velocity) {
-                        if !v.is_finite() {
-                            return Err(key(&format!("domain.particle[{k}]"), "values must be finite".into()));
-                        }
-                    }
-                }
-                let mut fixed_seen = false;
-                for (k, p) in dm.particle_list.iter().enumerate() {
-                    if p.fixed {
-                        fixed_seen = true;
-                    } else if fixed_seen {
-                        return Err(key(
-                            &format!("domain.particle[{k}]"),
-                            "list mobile particles before fixed ones".into(),
-                        ));
-                    }
-                }
-            }
-        }
-        if s.fluid != FluidMode::Off && dm.bottom != Bottom::Periodic {
-            let h = self.column_height();
-            if h <= 0.0 {
-                return Err(key("domain.water_depth", "the fluid column height must be > 0".into()));
-            }
-        }
-        check(file, "solver.end_time", s.end_time, ParamRange::positive())?;
-        check(file, "solver.stiffness", s.stiffness, ParamRange::positive())?;
-        check(file, "solver.tangential_ratio", s.tangential_ratio, ParamRange::closed(0.0, 10.0))?;
-        check(file, "solver.young", s.young, ParamRange::positive())?;
-        check(file, "solver.poisson", s.poisson, ParamRange::closed(0.0, 0.5))?;
-        check(file, "solver.restitution", s.restitution, ParamRange::open_closed(0.0, 1.0))?;
-        check(file, "solver.friction", s.friction, ParamRange::non_negative())?;
-        check(file, "solver.dt_safety", s.dt_safety, ParamRange::open_closed(0.0, 0.3))?;
-        check(file, "solver.skin", s.skin, ParamRange::open_closed(0.0, 2.0))?;
-        check(file, "solver.fluid_period", s.fluid_period, ParamRange::positive())?;
-        check(file, "solver.settle_time", s.settle_time, ParamRange::non_negative())?;
-        check(file, "solver.stats_start", s.stats_start, ParamRange::non_negative())?;
-        check(file, "solver.steady_window", s.steady_window, ParamRange::positive())?;
-        check(file, "solver.steady_tolerance", s.steady_tolerance, ParamRange::non_negative())?;
-        check(file, "solver.steady_windows", s.steady_windows as f64, ParamRange::closed(1.0, 1e9))?;
-        check(file, "solver.threads", s.threads as f64, ParamRange::closed(0.0, 1024.0))?;
-        check(file, "solver.vtk_period", s.vtk_period, ParamRange::non_negative())?;
-        check(file, "solver.max_steps", s.max_steps as f64, ParamRange::closed(1.0, 1e15))?;
-        Ok(())
+        let missing = |key: &str| Error::Key {
+            file: scene.path.clone(),
+            key: key.into(),
+            message: "missing, and its default cannot be derived for this case; give it".into(),
+        };
+        let l = &scene.solver.lagrangian;
+        let p = &scene.particles;
+        let dm = &scene.domain;
+        let initial_bed = l.initial == Initial::Bed;
+        let domain = Domain {
+            length: l.length.ok_or_else(|| missing("solver.lagrangian.length"))?,
+            width: l.width.ok_or_else(|| missing("solver.lagrangian.width"))?,
+            side_walls: l.side_walls,
+            bottom: l.bottom,
+            height: l.height,
+            initial: l.initial,
+            bed_height: dm.bed_height,
+            bed_phi: dm.bed_phi.unwrap_or(DEM_BED_PHI),
+            particles: l.particles,
+            rough_layer: l.rough_layer,
+            water_depth: dm.water_depth,
+            cells: l.cells.ok_or_else(|| missing("solver.lagrangian.cells"))?,
+            surface: l.surface,
+            gas_phi: l.gas_phi,
+            gas_temperature: l.gas_temperature,
+            particle_list: l.particle_list.clone(),
+        };
+        let linear = p.contact.law == ContactModel::Linear;
+        let settings = Settings {
+            end_time: l.end_time,
+            contact: p.contact.law,
+            // the Hertz law has no k_n: any positive number keeps the struct total
+            stiffness: match p.contact.stiffness {
+                Some(k) => k,
+                None if linear => return Err(missing("particles.contact.stiffness")),
+                None => 1.0,
+            },
+            tangential_ratio: p.contact.tangential_ratio,
+            young: p.contact.young,
+            poisson: p.contact.poisson,
+            restitution: p.restitution,
+            friction: p.friction,
+            dt_safety: l.dt_safety,
+            skin: l.skin,
+            fluid: l.fluid,
+            fluid_period: l.fluid_period,
+            settle_time: match l.settle_time {
+                Some(t) => t,
+                None if initial_bed => return Err(missing("solver.lagrangian.settle_time")),
+                None => 0.0,
+            },
+            stats_start: l.stats_start,
+            steady_window: l.steady_window,
+            steady_tolerance: l.steady_tolerance,
+            steady_windows: l.steady_windows,
+            stop_when_steady: l.stop_when_steady,
+            threads: l.threads,
+            vtk_period: l.vtk_period,
+            max_steps: l.max_steps,
+        };
+        Ok(Config { domain, settings })
     }
 
     /// Height of the rough layer (m): `rough_layer` d with a rough bottom, else 0. The

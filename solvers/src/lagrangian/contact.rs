@@ -39,18 +39,7 @@
 //! restitution close to, not exactly, e. Time step: a safety factor times the Rayleigh
 //! time pi R sqrt(rho / G) / (0.1631 nu + 0.8766).
 
-use serde::{Deserialize, Serialize};
-
-/// Which normal/tangential law.
-#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum ContactModel {
-    /// linear spring-dashpot + Coulomb slider
-    #[default]
-    Linear,
-    /// Hertz-Mindlin with restitution-matched damping
-    Hertz,
-}
+pub use saltus_core::scene::ContactModel;
 
 /// Parameters of the contact law, resolved for the run.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,0 +1,274 @@
+//! `[closures]`: one table per family, `type = "..."` plus parameters. Each table is
+//! read on its own, its model name checked against the registry first, and a mistake
+//! inside it reported with its full key path.
+
+use std::path::Path;
+
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+
+use super::de_path;
+use super::tables::Particles;
+use crate::closure::Family;
+use crate::error::{Error, Result};
+use crate::param::Describe;
+use crate::registry;
+use crate::{DragLaw, EffectiveViscosity, Fluctuation, GranularStress, Hindrance, Turbulence};
+
+/// The closures of a scene, one per family. Absent families take their defaults when the
+/// scene is resolved (see [`DEFAULT_MODELS`]); `granular` has no default.
+#[derive(Debug, Default, Serialize)]
+pub struct Closures {
+    /// single-particle drag
+    pub drag: Option<Box<dyn DragLaw>>,
+    /// hindrance
+    pub hindrance: Option<Box<dyn Hindrance>>,
+    /// effective fluid viscosity
+    pub viscosity: Option<Box<dyn EffectiveViscosity>>,
+    /// granular stress
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub granular: Option<Box<dyn GranularStress>>,
+    /// turbulence
+    pub turbulence: Option<Box<dyn Turbulence>>,
+    /// fluid velocity fluctuations
+    pub fluctuation: Option<Box<dyn Fluctuation>>,
+}
+
+/// Default model of each family (none for `granular`).
+pub const DEFAULT_MODELS: [(Family, &str); 5] = [
+    (Family::Drag, "dallavalle"),
+    (Family::Hindrance, "richardson_zaki"),
+    (Family::Viscosity, "clear_fluid"),
+    (Family::Turbulence, "laminar"),
+    (Family::Fluctuation, "none"),
+];
+
+/// Deserialise a model's parameters (its table without `type`) as the concrete type,
+/// returning the key path and message of the first error. typetag buffers the table and
+/// loses the path; the registry calls this with the concrete type to recover it.
+pub fn de_concrete<T: DeserializeOwned>(value: toml::Value) -> std::result::Result<(), (String, String)> {
+    serde_path_to_error::deserialize::<_, T>(value).map(|_| ()).map_err(|e| {
+        let path = e.path().to_string();
+        (if path == "." { String::new() } else { path }, e.into_inner().to_string())
+    })
+}
+
+/// Deserialise one closure table of family `family` found at key path `key`. The model
+/// name is checked against the registry first so that an unknown name lists the known
+/// ones, and the parameters are range-checked.
+pub fn closure_from_value<T>(value: toml::Value, family: Family, file: &Path, key: &str) -> Result<Box<T>>
+where
+    T: ?Sized + Describe,
+    Box<T>: DeserializeOwned,
+{
+    closure_with(value, family, file, key, |_, _| ())
+}
+
+/// [`closure_from_value`] with `prepare` called on the model and its table between
+/// deserialisation and the range check (a granular closure inherits the grain's
+/// properties there).
+fn closure_with<T>(
+    value: toml::Value,
+    family: Family,
+    file: &Path,
+    key: &str,
+    prepare: impl FnOnce(&mut Box<T>, &toml::Table),
+) -> Result<Box<T>>
+where
+    T: ?Sized + Describe,
+    Box<T>: DeserializeOwned,
+{
+    let key_err = |k: String, message: String| Error::Key { file: file.into(), key: k, message };
+    let table = match &value {
+        toml::Value::Table(t) => t.clone(),
+        other => {
+            return Err(key_err(
+                key.into(),
+                format!(
+                    "expected a table such as {{ type = \"{}\" }}, found {}",
+                    registry::models_of(family).first().map_or("...", |m| m.name),
+                    other.type_str()
+                ),
+            ))
+        }
+    };
+    let name = match table.get("type") {
+        Some(toml::Value::String(s)) => s.clone(),
+        Some(other) => {
+            return Err(key_err(
+                format!("{key}.type"),
+                format!("expected a model name (string), found {}", other.type_str()),
+            ))
+        }
+        None => {
+            return Err(key_err(
+                format!("{key}.type"),
+                format!("missing; known {family} models: {}", registry::known_names(family)),
+            ))
+        }
+    };
+    let Some(entry) = registry::models_of(family).into_iter().find(|m| m.name == name) else {
+        return Err(Error::UnknownModel {
+            file: file.into(),
+            key: format!("{key}.type"),
+            family: family.to_string(),
+            name,
+            known: registry::known_names(family),
+        });
+    };
+    let mut params = table.clone();
+    params.remove("type");
+    // serde reads a struct from an array too (by position): compare with the shape of
+    // the model's default, where every sub-table is a table
+    if let Ok(Ok(default)) = (entry.default_toml)().map(|t| t.parse::<toml::Table>()) {
+        if let Some((path, found)) = array_for_table(&params, &default) {
+            return Err(key_err(format!("{key}.{path}"), format!("expected a table, found {found}")));
+        }
+    }
+    if let Err((path, message)) = (entry.check_toml)(toml::Value::Table(params.clone())) {
+        let inner = refine(&params, &path, &message);
+        let full = if inner.is_empty() { key.to_string() } else { format!("{key}.{inner}") };
+        return Err(key_err(full, message));
+    }
+    let mut model: Box<T> = de_path(value, file, key)?;
+    prepare(&mut model, &table);
+    model.validate().map_err(|e| Error::from_param(file, key, e))?;
+    Ok(model)
+}
+
+/// The first key of `given` holding something else than a table where `default` holds a
+/// table, with the type found.
+fn array_for_table(given: &toml::Table, default: &toml::Table) -> Option<(String, &'static str)> {
+    given.iter().find_map(|(k, v)| match (v, default.get(k)) {
+        (toml::Value::Table(g), Some(toml::Value::Table(d))) => {
+            array_for_table(g, d).map(|(path, found)| (format!("{k}.{path}"), found))
+        }
+        (other, Some(toml::Value::Table(_))) => Some((k.clone(), other.type_str())),
+        _ => None,
+    })
+}
+
+/// Finish a key path that serde stopped short of: inside an internally tagged enum
+/// (`g0 = { type = "...", a0 = 1 }`) the path ends at `g0`; the unknown field or variant
+/// named by the message is then looked up in that sub-table.
+fn refine(params: &toml::Table, path: &str, message: &str) -> String {
+    let mut here = params;
+    for seg in path.split('.').filter(|s| !s.is_empty()) {
+        match here.get(seg) {
+            Some(toml::Value::Table(t)) => here = t,
+            _ => return path.to_string(),
+        }
+    }
+    let quoted = message.split('`').nth(1).unwrap_or_default();
+    let hit = if message.starts_with("unknown field") {
+        here.contains_key(quoted).then(|| quoted.to_string())
+    } else if message.starts_with("unknown variant") {
+        here.iter().find(|(_, v)| v.as_str() == Some(quoted)).map(|(k, _)| k.clone())
+    } else if message.starts_with("invalid type") || message.starts_with("invalid value") {
+        // serde names the offending value as it found it: `string "x"`, `integer `3``, ...
+        let shown = |v: &toml::Value| match v {
+            toml::Value::String(s) => Some(format!("string {s:?}")),
+            toml::Value::Integer(i) => Some(format!("integer `{i}`")),
+            toml::Value::Float(f) => Some(format!("floating point `{f}`")),
+            toml::Value::Boolean(b) => Some(format!("boolean `{b}`")),
+            _ => None,
+        };
+        here.iter().find(|(_, v)| shown(v).is_some_and(|t| message.contains(&t))).map(|(k, _)| k.clone())
+    } else {
+        None
+    };
+    match (hit, path.is_empty()) {
+        (Some(k), true) => k,
+        (Some(k), false) => format!("{path}.{k}"),
+        (None, _) => path.to_string(),
+    }
+}
+
+fn default_closure<T>(family: Family, file: &Path) -> Result<Box<T>>
+where
+    T: ?Sized + Describe,
+    Box<T>: DeserializeOwned,
+{
+    let name = DEFAULT_MODELS
+        .iter()
+        .find(|(f, _)| *f == family)
+        .map(|(_, n)| *n)
+        .ok_or_else(|| Error::Invalid(format!("family {family} has no default model")))?;
+    let mut t = toml::Table::new();
+    t.insert("type".into(), toml::Value::String(name.into()));
+    closure_from_value(toml::Value::Table(t), family, file, &format!("closures.{family}")).map_err(|e| {
+        Error::Invalid(format!(
+            "default {family} model `{name}` is not registered ({e}); the closures crate was not linked: call saltus_closures::link()"
+        ))
+    })
+}
+
+impl Closures {
+    /// Read `[closures]`; the granular closure inherits what it does not set from
+    /// `particles`.
+    pub(super) fn load(value: Option<toml::Value>, particles: &Particles, file: &Path) -> Result<Closures> {
+        let mut table = match value {
+            None => toml::Table::new(),
+            Some(toml::Value::Table(t)) => t,
+            Some(other) => {
+                return Err(Error::Key {
+                    file: file.into(),
+                    key: "closures".into(),
+                    message: format!("expected a table, found {}", other.type_str()),
+                })
+            }
+        };
+        let mut c = Closures::default();
+        let mut take = |f: Family| table.remove(f.key()).map(|v| (v, format!("closures.{}", f.key())));
+        if let Some((v, k)) = take(Family::Drag) {
+            c.drag = Some(closure_from_value(v, Family::Drag, file, &k)?);
+        }
+        if let Some((v, k)) = take(Family::Hindrance) {
+            c.hindrance = Some(closure_from_value(v, Family::Hindrance, file, &k)?);
+        }
+        if let Some((v, k)) = take(Family::Viscosity) {
+            c.viscosity = Some(closure_from_value(v, Family::Viscosity, file, &k)?);
+        }
+        if let Some((v, k)) = take(Family::Granular) {
+            let inherit = |m: &mut Box<dyn GranularStress>, t: &toml::Table| m.inherit(t, particles);
+            c.granular = Some(closure_with(v, Family::Granular, file, &k, inherit)?);
+        }
+        if let Some((v, k)) = take(Family::Turbulence) {
+            c.turbulence = Some(closure_from_value(v, Family::Turbulence, file, &k)?);
+        }
+        if let Some((v, k)) = take(Family::Fluctuation) {
+            c.fluctuation = Some(closure_from_value(v, Family::Fluctuation, file, &k)?);
+        }
+        if let Some(k) = table.keys().next() {
+            let known: Vec<_> = Family::ALL.iter().map(|f| f.key()).collect();
+            return Err(Error::Key {
+                file: file.into(),
+                key: format!("closures.{k}"),
+                message: format!("unknown closure family; known: {}", known.join(", ")),
+            });
+        }
+        if c.drag.is_none() {
+            c.drag = Some(default_closure(Family::Drag, file)?);
+        }
+        if c.hindrance.is_none() {
+            c.hindrance = Some(default_closure(Family::Hindrance, file)?);
+        }
+        if c.viscosity.is_none() {
+            c.viscosity = Some(default_closure(Family::Viscosity, file)?);
+        }
+        if c.turbulence.is_none() {
+            c.turbulence = Some(default_closure(Family::Turbulence, file)?);
+        }
+        if c.fluctuation.is_none() {
+            c.fluctuation = Some(default_closure(Family::Fluctuation, file)?);
+        }
+        Ok(c)
+    }
+
+    /// Maximum packing of the granular closure (the kinetic phi_max, or the packing of a
+    /// local rheology at zero shear); None without one.
+    pub fn max_packing(&self) -> Option<f64> {
+        let g = self.granular.as_deref()?;
+        g.as_kinetic().map(|k| k.phi_max()).or_else(|| g.as_local().map(|l| l.packing(0.0)))
+    }
+}

@@ -1,0 +1,372 @@
+//! `[solver.lagrangian]`: the DEM's own geometry and numerics, with defaults derived
+//! from the grain size and the case where they depend on it.
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use super::check;
+use super::solver::{key_error, MAX_TIME};
+use crate::error::Result;
+use crate::param::ParamRange;
+
+/// What is below the particles.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Bottom {
+    /// a layer of fixed particles from a random deposition (Maurin 2015 section IV), above
+    /// a flat wall at z = 0
+    #[default]
+    Rough,
+    /// a flat frictional wall at z = 0
+    Wall,
+    /// nothing (free fall)
+    None,
+    /// periodic in z with period `height`
+    Periodic,
+}
+
+/// How the particles start.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Initial {
+    /// a bed deposited under gravity (jittered lattice released and settled for
+    /// `settle_time`)
+    #[default]
+    Bed,
+    /// a homogeneous gas: cubic lattice at `gas_phi` with Gaussian velocities of
+    /// temperature `gas_temperature`
+    Gas,
+    /// the particles listed in `[[solver.lagrangian.particle]]`
+    List,
+}
+
+/// How the fluid acts.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum FluidMode {
+    /// drag and buoyancy, the column solved every `fluid_period` (Maurin 2015)
+    #[default]
+    Coupled,
+    /// drag and buoyancy from a fluid at rest (the column is not solved)
+    Still,
+    /// dry granular: no drag, no buoyancy
+    Off,
+}
+
+/// Where the free surface is put.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Surface {
+    /// `water_depth` above the surface of the deposited bed, measured after the
+    /// deposition (the level where the packing falls to half its bulk value): the water
+    /// depth of the Shields number is the one asked whatever the packing of the deposit
+    #[default]
+    Deposit,
+    /// `bed_height + water_depth` above the top of the rough layer
+    Nominal,
+}
+
+/// One particle of `initial = "list"`.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ParticleSpec {
+    /// centre (m)
+    pub position: [f64; 3],
+    /// velocity (m/s)
+    #[serde(default)]
+    pub velocity: [f64; 3],
+    /// angular velocity (rad/s)
+    #[serde(default)]
+    pub angular_velocity: [f64; 3],
+    /// fixed in space
+    #[serde(default)]
+    pub fixed: bool,
+}
+
+/// Default periodic cell, in grain diameters (Maurin 2015 appendix A found 10 d to 50 d
+/// converged).
+pub const CELL_DIAMETERS: f64 = 20.0;
+/// Default fluid cells per grain diameter (d/30, Maurin 2015 appendix A).
+pub const FLUID_CELLS_PER_DIAMETER: f64 = 30.0;
+/// Most particles of one DEM run.
+pub const MAX_PARTICLES: f64 = 1.0e7;
+/// Longest side of the box in grain diameters (bounds the neighbour grid).
+pub const MAX_SIDE_DIAMETERS: f64 = 1.0e4;
+/// Packing of the released lattice of `initial = "bed"` (cubic, spacing 1.1 d).
+const LATTICE_PHI: f64 = std::f64::consts::PI / 6.0 / (1.1 * 1.1 * 1.1);
+/// Free-fall times of the released lattice in the default settle time.
+const SETTLE_FALLS: f64 = 3.0;
+
+/// `[solver.lagrangian]`. Lengths in metres; `None` of a derived key before the scene is
+/// resolved (always `Some` after, unless the default cannot be derived and the DEM is
+/// not the active solver).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct LagrangianSettings {
+    /// simulated time of the run after the deposition (s)
+    pub end_time: f64,
+    /// streamwise period L_x (m); default 20 d
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length: Option<f64>,
+    /// spanwise period L_y (m), or channel width with `side_walls`; default 20 d
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub width: Option<f64>,
+    /// flat frictional walls at y = 0 and y = width instead of a periodic y
+    pub side_walls: bool,
+    /// what is below the particles
+    pub bottom: Bottom,
+    /// z period (bottom = "periodic") or height of the box the gas fills (m)
+    pub height: f64,
+    /// how particles start
+    pub initial: Initial,
+    /// number of mobile particles; overrides the count from `domain.bed_height` (bed) or
+    /// `gas_phi` (gas)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub particles: Option<usize>,
+    /// thickness of the fixed rough layer, in particle diameters
+    pub rough_layer: f64,
+    /// cells of the DEM's fluid column over bed_height + water_depth; default cells of
+    /// d/30 (with `surface = "deposit"` the cell size is kept and the count follows)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cells: Option<usize>,
+    /// where the free surface is put (deposited beds)
+    pub surface: Surface,
+    /// volume fraction of the gas (initial = "gas")
+    pub gas_phi: f64,
+    /// granular temperature of the gas (m^2/s^2)
+    pub gas_temperature: f64,
+    /// particles of `initial = "list"`
+    #[serde(rename = "particle", skip_serializing_if = "Vec::is_empty")]
+    pub particle_list: Vec<ParticleSpec>,
+    /// time step over the contact time pi sqrt(m / (2 k_n)) (linear) or the Rayleigh time
+    /// (Hertz)
+    pub dt_safety: f64,
+    /// Verlet skin over d
+    pub skin: f64,
+    /// fluid coupling
+    pub fluid: FluidMode,
+    /// fluid resolution period tau_f (s)
+    pub fluid_period: f64,
+    /// deposition time before the flow starts, fluid at rest (s); default three
+    /// free-fall times of the released lattice under the buoyant weight
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub settle_time: Option<f64>,
+    /// time after which profiles are averaged (s)
+    pub stats_start: f64,
+    /// averaging window of the steady-state test (s)
+    pub steady_window: f64,
+    /// steady when the window-averaged transport rate changes by less than this
+    /// fraction between consecutive windows
+    pub steady_tolerance: f64,
+    /// consecutive windows under the tolerance
+    pub steady_windows: usize,
+    /// stop as soon as the run is steady
+    pub stop_when_steady: bool,
+    /// threads (0: all cores)
+    pub threads: usize,
+    /// period of VTK particle snapshots (s); 0: none
+    pub vtk_period: f64,
+    /// cap on DEM steps
+    pub max_steps: u64,
+}
+
+impl Default for LagrangianSettings {
+    fn default() -> Self {
+        Self {
+            end_time: 10.0,
+            length: None,
+            width: None,
+            side_walls: false,
+            bottom: Bottom::Rough,
+            height: 0.0,
+            initial: Initial::Bed,
+            particles: None,
+            rough_layer: 1.0,
+            cells: None,
+            surface: Surface::Deposit,
+            gas_phi: 0.0,
+            gas_temperature: 0.0,
+            particle_list: Vec::new(),
+            dt_safety: 0.05,
+            skin: 0.1,
+            fluid: FluidMode::Coupled,
+            fluid_period: 1.0e-2,
+            settle_time: None,
+            stats_start: 0.0,
+            steady_window: 1.0,
+            steady_tolerance: 0.05,
+            steady_windows: 3,
+            stop_when_steady: false,
+            threads: 0,
+            vtk_period: 0.0,
+            max_steps: 1_000_000_000_000,
+        }
+    }
+}
+
+/// What the derived defaults of the DEM depend on.
+pub struct Case {
+    /// grain diameter (m)
+    pub d: f64,
+    /// grain density (kg/m^3)
+    pub rho_p: f64,
+    /// fluid density (kg/m^3)
+    pub rho_f: f64,
+    /// gravity (m/s^2)
+    pub gravity: f64,
+    /// bed height at rest (m)
+    pub bed_height: f64,
+    /// water depth (m)
+    pub water_depth: f64,
+    /// packing of the bed
+    pub bed_phi: f64,
+}
+
+impl LagrangianSettings {
+    /// Fill the derived defaults. A default that cannot be derived stays `None`.
+    pub fn resolve(&mut self, c: &Case) {
+        self.length.get_or_insert(CELL_DIAMETERS * c.d);
+        self.width.get_or_insert(CELL_DIAMETERS * c.d);
+        if self.cells.is_none() {
+            let h = c.bed_height + c.water_depth;
+            self.cells = Some(((h * FLUID_CELLS_PER_DIAMETER / c.d).round() as usize).max(2));
+        }
+        if self.settle_time.is_none() {
+            // the lattice holds the mobile bed, the two diameters removed under it and
+            // the rough layer, at the loose packing of the lattice
+            let solid = (c.bed_height + (self.rough_layer + 2.0) * c.d) * c.bed_phi;
+            let release = solid / LATTICE_PHI;
+            let rho_f = if self.fluid == FluidMode::Off { 0.0 } else { c.rho_f };
+            let g_buoyant = c.gravity.abs() * (1.0 - rho_f / c.rho_p);
+            let t = SETTLE_FALLS * (2.0 * release / g_buoyant).sqrt();
+            // round to a millisecond so that the resolved scene reads cleanly
+            self.settle_time = (t.is_finite() && t > 0.0).then(|| (t * 1e3).round() / 1e3);
+        }
+    }
+
+    /// Ranges of the keys given (or derived), whichever solver is active.
+    pub(super) fn check(&self, f: &Path, d: f64) -> Result<()> {
+        let p = |k: &str| format!("solver.lagrangian.{k}");
+        let cut = d * (1.0 + self.skin);
+        let side = ParamRange::closed(d, MAX_SIDE_DIAMETERS * d);
+        check(f, &p("end_time"), self.end_time, ParamRange::open_closed(0.0, MAX_TIME))?;
+        check(f, &p("skin"), self.skin, ParamRange::open_closed(0.0, 2.0))?;
+        if let Some(l) = self.length {
+            // minimum image: a particle must not meet two images of another
+            check(f, &p("length"), l, ParamRange::closed(2.0 * cut + 1e-12, MAX_SIDE_DIAMETERS * d))?;
+        }
+        if let Some(w) = self.width {
+            let range =
+                if self.side_walls { side } else { ParamRange::closed(2.0 * cut + 1e-12, MAX_SIDE_DIAMETERS * d) };
+            check(f, &p("width"), w, range)?;
+        }
+        check(f, &p("height"), self.height, ParamRange::closed(0.0, MAX_SIDE_DIAMETERS * d))?;
+        check(f, &p("rough_layer"), self.rough_layer, ParamRange::closed(0.5, 10.0))?;
+        if let Some(n) = self.cells {
+            check(f, &p("cells"), n as f64, ParamRange::closed(2.0, 1_000_000.0))?;
+        }
+        if let Some(n) = self.particles {
+            check(f, &p("particles"), n as f64, ParamRange::closed(1.0, MAX_PARTICLES))?;
+        }
+        check(f, &p("gas_phi"), self.gas_phi, ParamRange::closed_open(0.0, 0.5))?;
+        check(f, &p("gas_temperature"), self.gas_temperature, ParamRange::closed(0.0, 1e6))?;
+        check(f, &p("dt_safety"), self.dt_safety, ParamRange::open_closed(0.0, 0.3))?;
+        check(f, &p("fluid_period"), self.fluid_period, ParamRange::open_closed(0.0, MAX_TIME))?;
+        if let Some(t) = self.settle_time {
+            check(f, &p("settle_time"), t, ParamRange::closed(0.0, MAX_TIME))?;
+        }
+        check(f, &p("stats_start"), self.stats_start, ParamRange::closed(0.0, MAX_TIME))?;
+        check(f, &p("steady_window"), self.steady_window, ParamRange::open_closed(0.0, MAX_TIME))?;
+        check(f, &p("steady_tolerance"), self.steady_tolerance, ParamRange::closed(0.0, 1e6))?;
+        check(f, &p("steady_windows"), self.steady_windows as f64, ParamRange::closed(1.0, 1e9))?;
+        check(f, &p("threads"), self.threads as f64, ParamRange::closed(0.0, 1024.0))?;
+        check(f, &p("vtk_period"), self.vtk_period, ParamRange::closed(0.0, MAX_TIME))?;
+        check(f, &p("max_steps"), self.max_steps as f64, ParamRange::closed(1.0, 1e15))?;
+        for (k, s) in self.particle_list.iter().enumerate() {
+            if s.position.iter().chain(&s.velocity).chain(&s.angular_velocity).any(|v| !v.is_finite() || v.abs() > 1e6)
+            {
+                return Err(key_error(f, &format!("{}[{k}]", p("particle")), "values must be finite, |x| <= 1e6"));
+            }
+        }
+        Ok(())
+    }
+
+    /// What the DEM needs to run, checked when it is the active solver: derived keys
+    /// present, the start the `initial` mode needs, a fluid column, a bounded count.
+    pub(super) fn check_active(&self, f: &Path, c: &Case) -> Result<()> {
+        let p = |k: &str| format!("solver.lagrangian.{k}");
+        let need = |k: &str, what: &str| key_error(f, &p(k), format!("missing, and {what}; give it"));
+        let length = self.length.ok_or_else(|| need("length", "no default"))?;
+        let width = self.width.ok_or_else(|| need("width", "no default"))?;
+        if self.initial == Initial::Bed && self.settle_time.is_none() {
+            return Err(need("settle_time", "the default needs grains heavier than the fluid under gravity"));
+        }
+        let cut = c.d * (1.0 + self.skin);
+        if self.bottom == Bottom::Periodic {
+            check(f, &p("height"), self.height, ParamRange::closed(2.0 * cut + 1e-12, MAX_SIDE_DIAMETERS * c.d))?;
+            if self.fluid == FluidMode::Coupled {
+                return Err(key_error(
+                    f,
+                    &p("fluid"),
+                    "a z-periodic box has no fluid column; use fluid = \"off\" or \"still\"",
+                ));
+            }
+        }
+        let volume = std::f64::consts::PI * c.d.powi(3) / 6.0;
+        let count = |height: f64, phi: f64| phi * length * width * height / volume;
+        let mobile = match self.initial {
+            Initial::Bed => {
+                if self.particles.is_none() && c.bed_height <= 0.0 {
+                    return Err(key_error(
+                        f,
+                        "domain.bed_height",
+                        "initial = \"bed\" needs bed_height > 0 (m) or solver.lagrangian.particles = N",
+                    ));
+                }
+                if matches!(self.bottom, Bottom::None | Bottom::Periodic) {
+                    return Err(key_error(f, &p("bottom"), "a deposited bed needs bottom = \"rough\" or \"wall\""));
+                }
+                self.particles.map_or(count(c.bed_height + (self.rough_layer + 2.0) * c.d, c.bed_phi), |n| n as f64)
+            }
+            Initial::Gas => {
+                check(f, &p("gas_phi"), self.gas_phi, ParamRange::open(0.0, 0.5))?;
+                check(f, &p("gas_temperature"), self.gas_temperature, ParamRange::positive())?;
+                check(f, &p("height"), self.height, ParamRange::closed(2.0 * cut + 1e-12, MAX_SIDE_DIAMETERS * c.d))?;
+                self.particles.map_or(count(self.height, self.gas_phi), |n| n as f64)
+            }
+            Initial::List => {
+                if self.particle_list.is_empty() {
+                    return Err(key_error(
+                        f,
+                        &p("particle"),
+                        "initial = \"list\" needs [[solver.lagrangian.particle]] entries",
+                    ));
+                }
+                if let Some(k) = self.particle_list.windows(2).position(|w| w[0].fixed && !w[1].fixed) {
+                    return Err(key_error(
+                        f,
+                        &format!("{}[{}]", p("particle"), k + 1),
+                        "list mobile particles before fixed ones",
+                    ));
+                }
+                self.particle_list.len() as f64
+            }
+        };
+        if mobile.is_nan() || mobile > MAX_PARTICLES {
+            return Err(key_error(
+                f,
+                &p("length"),
+                format!("the box holds {mobile:.3e} particles, more than {MAX_PARTICLES:e}: shrink length, width or the bed"),
+            ));
+        }
+        if self.fluid != FluidMode::Off && self.bottom != Bottom::Periodic && c.bed_height + c.water_depth <= 0.0 {
+            return Err(key_error(
+                f,
+                "domain.water_depth",
+                "the fluid column height bed_height + water_depth must be > 0",
+            ));
+        }
+        Ok(())
+    }
+}

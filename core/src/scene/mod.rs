@@ -1,0 +1,408 @@
+//! The declarative scene: one TOML file with the physics, the grains, the shared
+//! column, the closures (one table per family, `type = "..."` plus parameters), the
+//! solver with the numerics of both solvers, and the output.
+//!
+//! Loading is done in stages so that every error names the file and the full key path:
+//! TOML syntax (line and column) -> tables where tables are expected -> base tables
+//! (serde_path_to_error) -> ranges of every key -> each closure table on its own (model
+//! name checked against the registry first, parameters with their full path) -> derived
+//! defaults -> closure needs -> what the active solver needs. `saltus check` and
+//! `saltus run` both go through [`Scene::from_file_with`], so they refuse the same
+//! scenes.
+
+mod closures;
+mod domain;
+mod lagrangian;
+mod overrides;
+mod solver;
+mod tables;
+
+use std::path::{Path, PathBuf};
+
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::needs::{Field, Needs};
+use crate::param::ParamRange;
+
+pub use closures::{closure_from_value, de_concrete, Closures, DEFAULT_MODELS};
+pub use domain::{Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT};
+pub use lagrangian::{Case, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, MAX_PARTICLES, MAX_SIDE_DIAMETERS};
+pub use overrides::{apply_override, parse_table};
+pub use solver::{
+    Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver, SolverKind, Surface,
+    MAX_TIME,
+};
+pub use tables::{Contact, ContactModel, Fluid, Meta, Output, Particles, Physics, Reference};
+
+/// Packing the DEM counts the particles of a bed with when `domain.bed_phi` is absent.
+pub const DEM_BED_PHI: f64 = 0.6;
+/// Packing of the Eulerian initial bed when `domain.bed_phi` is absent (Chassagne 2023),
+/// unless above 0.95 of the closure's maximum packing.
+pub const EULERIAN_BED_PHI: f64 = 0.61;
+
+/// A loaded, resolved and checked scene.
+#[derive(Debug, Serialize)]
+pub struct Scene {
+    /// description
+    pub meta: Meta,
+    /// random seed of every stochastic stream
+    pub seed: u64,
+    /// fluid
+    pub fluid: Fluid,
+    /// particles
+    pub particles: Particles,
+    /// body forces
+    pub physics: Physics,
+    /// the column both solvers share
+    pub domain: Domain,
+    /// the active solver and the numerics of both
+    pub solver: Solver,
+    /// closures
+    pub closures: Closures,
+    /// output
+    pub output: Output,
+    /// reference data, in the order of the scene file, paths absolute
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub reference: Vec<Reference>,
+    /// file the scene was read from (for messages and relative paths)
+    #[serde(skip)]
+    pub path: PathBuf,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Base {
+    #[serde(default)]
+    meta: Meta,
+    #[serde(default)]
+    seed: u64,
+    #[serde(default)]
+    fluid: Fluid,
+    particles: Particles,
+    #[serde(default)]
+    physics: Physics,
+    #[serde(default)]
+    domain: Domain,
+    #[serde(default)]
+    solver: Solver,
+    #[serde(default)]
+    output: Output,
+    #[serde(default, deserialize_with = "tables::one_or_many")]
+    reference: Vec<Reference>,
+}
+
+/// Keys that must hold a table. serde reads a struct from an array too (by position), so
+/// `particles = [1, 2]` would load as 1 m grains; refuse it before.
+const TABLE_KEYS: [&str; 12] = [
+    "meta",
+    "fluid",
+    "particles",
+    "particles.contact",
+    "physics",
+    "domain",
+    "solver",
+    "solver.eulerian",
+    "solver.lagrangian",
+    "output",
+    "closures",
+    "closures.granular",
+];
+
+fn require_tables(table: &toml::Table, file: &Path) -> Result<()> {
+    for key in TABLE_KEYS {
+        let mut here = Some(table);
+        let mut value = None;
+        for seg in key.split('.') {
+            value = here.and_then(|t| t.get(seg));
+            here = value.and_then(|v| v.as_table());
+        }
+        if let Some(v) = value.filter(|v| !v.is_table()) {
+            return Err(Error::Key {
+                file: file.into(),
+                key: key.into(),
+                message: format!("expected a table ([{key}] or {key} = {{ ... }}), found {}", v.type_str()),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Serialise any value (a closure trait object included) to a TOML string.
+pub fn to_toml_table<T: Serialize + ?Sized>(v: &T) -> std::result::Result<String, String> {
+    toml::to_string(v).map_err(|e| e.to_string())
+}
+
+/// Deserialise `value` found at key path `prefix` of `file` into `T`, reporting the full
+/// key path of a missing, unknown or mistyped key. Solvers use it for their `[domain]`
+/// and `[solver]` tables.
+pub fn de_path<T: DeserializeOwned>(value: toml::Value, file: &Path, prefix: &str) -> Result<T> {
+    serde_path_to_error::deserialize::<_, T>(value).map_err(|e| {
+        let inner = e.path().to_string();
+        let key = match (prefix.is_empty(), inner == ".") {
+            (true, _) => inner,
+            (false, true) => prefix.to_string(),
+            (false, false) => format!("{prefix}.{inner}"),
+        };
+        Error::Key { file: file.to_path_buf(), key, message: e.into_inner().to_string() }
+    })
+}
+
+/// An [`Error::OutOfRange`] naming `file` and `key` unless `range` contains `value`.
+pub fn check(file: &Path, key: &str, value: f64, range: ParamRange) -> Result<()> {
+    if range.contains(value) {
+        Ok(())
+    } else {
+        Err(Error::OutOfRange {
+            file: file.into(),
+            key: key.into(),
+            value: value.to_string(),
+            allowed: range.to_string(),
+        })
+    }
+}
+
+impl Scene {
+    /// Read, resolve and check a scene file.
+    pub fn from_file(path: impl AsRef<Path>) -> Result<Scene> {
+        Self::from_file_with(path, &[])
+    }
+
+    /// Read a scene file and apply `--set KEY=VALUE` overrides before resolving it.
+    pub fn from_file_with(path: impl AsRef<Path>, overrides: &[String]) -> Result<Scene> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| Error::Io { file: path.into(), source })?;
+        let mut table = parse_table(&text, path)?;
+        for o in overrides {
+            apply_override(&mut table, o)?;
+        }
+        Self::from_table(table, path)
+    }
+
+    /// Resolve and check a scene given as a TOML table (`file` is used in messages and
+    /// to resolve reference paths).
+    pub fn from_table(mut table: toml::Table, file: &Path) -> Result<Scene> {
+        require_tables(&table, file)?;
+        let closures_value = table.remove("closures");
+        let base: Base = de_path(toml::Value::Table(table), file, "")?;
+        base.fluid.check(file)?;
+        base.particles.check(file)?;
+        base.physics.check(file)?;
+        base.domain.check(file)?;
+        base.solver.eulerian.check(file)?;
+        base.solver.lagrangian.check(file, base.particles.diameter)?;
+        let closures = Closures::load(closures_value, &base.particles, file)?;
+        let mut scene = Scene {
+            meta: base.meta,
+            seed: base.seed,
+            fluid: base.fluid,
+            particles: base.particles,
+            physics: base.physics,
+            domain: base.domain,
+            solver: base.solver,
+            closures,
+            output: base.output,
+            reference: base.reference,
+            path: file.to_path_buf(),
+        };
+        scene.resolve()?;
+        scene.check_needs()?;
+        scene.check_active()?;
+        Ok(scene)
+    }
+
+    /// What the DEM's derived defaults depend on.
+    pub fn case(&self) -> Case {
+        Case {
+            d: self.particles.diameter,
+            rho_p: self.particles.density,
+            rho_f: self.fluid.density,
+            gravity: self.physics.gravity,
+            bed_height: self.domain.bed_height,
+            water_depth: self.domain.water_depth,
+            bed_phi: self.domain.bed_phi.unwrap_or(DEM_BED_PHI),
+        }
+    }
+
+    /// Fill every default that depends on the case, so that the resolved scene holds the
+    /// numbers used: cells, the bed packing of the active solver, the DEM's box, fluid
+    /// cells and settle time, the stiffness, absolute reference paths.
+    fn resolve(&mut self) -> Result<()> {
+        let d = self.particles.diameter;
+        if self.domain.cells.is_none() {
+            let n = self.domain.default_cells(d);
+            // a default over the cap is left out, refused below only if the Eulerian runs
+            self.domain.cells = (n <= MAX_CELLS).then_some(n);
+        }
+        let case = self.case();
+        self.solver.lagrangian.resolve(&case);
+        if self.particles.contact.stiffness.is_none() {
+            let dry = self.solver.lagrangian.fluid == FluidMode::Off;
+            let rho_f = if dry { 0.0 } else { self.fluid.density };
+            self.particles.contact.stiffness =
+                self.particles.rigid_stiffness(rho_f, self.physics.gravity, case.bed_phi, case.bed_height);
+        }
+        if self.domain.bed_phi.is_none() {
+            self.domain.bed_phi = match self.solver.kind {
+                SolverKind::Lagrangian => Some(DEM_BED_PHI),
+                SolverKind::Eulerian => self.closures.max_packing().map(|m| {
+                    if EULERIAN_BED_PHI < 0.95 * m {
+                        EULERIAN_BED_PHI
+                    } else {
+                        0.95 * m
+                    }
+                }),
+            };
+        }
+        let dir = self.path.parent().map(Path::to_path_buf).unwrap_or_default();
+        for r in &mut self.reference {
+            r.file = absolute(&dir, &r.file);
+        }
+        Ok(())
+    }
+
+    /// What the active solver needs beyond the ranges of its keys.
+    fn check_active(&self) -> Result<()> {
+        let f = self.path.as_path();
+        let key = |k: &str, m: String| Error::Key { file: f.into(), key: k.into(), message: m };
+        match self.solver.kind {
+            SolverKind::Eulerian => {
+                if self.domain.height() <= 0.0 {
+                    return Err(key(
+                        "domain.water_depth",
+                        "the column height bed_height + water_depth must be > 0".into(),
+                    ));
+                }
+                let cells = self.domain.cells.ok_or_else(|| {
+                    key(
+                        "domain.cells",
+                        format!("missing, and cells of d/4 over the column are more than {MAX_CELLS}; give it"),
+                    )
+                })?;
+                check(f, "domain.cells", cells as f64, ParamRange::closed(4.0, MAX_CELLS as f64))?;
+                let phi_max = self.closures.max_packing().ok_or_else(|| {
+                    key(
+                        "closures.granular",
+                        "missing; the Eulerian solver needs a granular closure (mu_i, mu_k or frictional_collisional)"
+                            .into(),
+                    )
+                })?;
+                let below = ParamRange::open(0.0, phi_max);
+                let why = format!("< {phi_max} (maximum packing of closures.granular)");
+                let bed_phi = self.domain.bed_phi.unwrap_or(EULERIAN_BED_PHI);
+                for (k, v) in [("domain.bed_phi", bed_phi), ("domain.suspension_phi", self.domain.suspension_phi)] {
+                    if v != 0.0 && !below.contains(v) {
+                        return Err(Error::OutOfRange {
+                            file: f.into(),
+                            key: k.into(),
+                            value: v.to_string(),
+                            allowed: why,
+                        });
+                    }
+                }
+                let rlp = self.solver.eulerian.elastic_phi_rlp;
+                let local = self.closures.granular.as_deref().and_then(|g| g.as_local()).is_some();
+                if local && rlp >= phi_max {
+                    return Err(Error::OutOfRange {
+                        file: f.into(),
+                        key: "solver.eulerian.elastic_phi_rlp".into(),
+                        value: rlp.to_string(),
+                        allowed: format!("< {phi_max} (the closure's packing at zero shear)"),
+                    });
+                }
+            }
+            SolverKind::Lagrangian => {
+                self.solver.lagrangian.check_active(f, &self.case())?;
+                if self.particles.contact.law == ContactModel::Linear && self.particles.contact.stiffness.is_none() {
+                    return Err(key(
+                        "particles.contact.stiffness",
+                        "missing, and the rigid-limit default needs grains heavier than the fluid under gravity; give it"
+                            .into(),
+                    ));
+                }
+                let unused = [
+                    ("domain.top", self.domain.top != Top::FreeSurface),
+                    ("domain.lid_velocity", self.domain.lid_velocity != 0.0),
+                    ("domain.stretching", self.domain.stretching != 1.0),
+                    ("domain.suspension_phi", self.domain.suspension_phi != 0.0),
+                ];
+                if let Some((k, _)) = unused.iter().find(|(_, set)| *set) {
+                    return Err(key(k, "not supported by the lagrangian solver (a free-surface column on a uniform grid, grains from solver.lagrangian.initial)".into()));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Fields provided by the scene's closures.
+    pub fn provided(&self) -> Needs {
+        let mut p = Needs::NONE;
+        if let Some(t) = &self.closures.turbulence {
+            p = p.union(t.provides());
+        }
+        if let Some(g) = &self.closures.granular {
+            p = p.union(g.provides());
+        }
+        p
+    }
+
+    fn check_needs(&self) -> Result<()> {
+        let provided = self.provided();
+        if let Some(fl) = &self.closures.fluctuation {
+            if let Some(field) = fl.needs().missing(provided).next() {
+                let turb = self.closures.turbulence.as_ref().map_or("none", |t| t.name());
+                return Err(Error::UnmetNeed {
+                    file: self.path.clone(),
+                    key: "closures.fluctuation".into(),
+                    model: fl.name().into(),
+                    field: field.name().into(),
+                    provider: provider_sentence(field, turb),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Resolved scene as TOML text (every default filled in).
+    pub fn to_toml(&self) -> Result<String> {
+        toml::to_string(self).map_err(|e| Error::Invalid(format!("cannot serialise scene: {e}")))
+    }
+
+    /// Submerged density ratio s - 1 = rho_p / rho_f - 1.
+    pub fn submerged_ratio(&self) -> f64 {
+        self.particles.density / self.fluid.density - 1.0
+    }
+}
+
+/// `file` relative to `dir` (the scene's folder), made absolute and free of `..` when it
+/// exists, so that a resolved scene finds it from any folder.
+fn absolute(dir: &Path, file: &str) -> String {
+    let p = dir.join(file);
+    let p = if p.is_relative() { std::env::current_dir().map(|c| c.join(&p)).unwrap_or(p) } else { p };
+    p.canonicalize().unwrap_or(p).display().to_string()
+}
+
+impl Fluid {
+    fn check(&self, f: &Path) -> Result<()> {
+        check(f, "fluid.density", self.density, ParamRange::closed(1e-3, 1e5))?;
+        check(f, "fluid.viscosity", self.viscosity, ParamRange::closed(1e-9, 1e3))
+    }
+}
+
+impl Physics {
+    fn check(&self, f: &Path) -> Result<()> {
+        check(f, "physics.gravity", self.gravity, ParamRange::closed(0.0, 1e3))?;
+        check(f, "physics.slope", self.slope, ParamRange::closed(-1.0, 1.0))?;
+        check(f, "physics.pressure_gradient", self.pressure_gradient, ParamRange::closed(-1e9, 1e9))
+    }
+}
+
+fn provider_sentence(field: Field, turbulence: &str) -> String {
+    match field {
+        Field::GranularTemperature => {
+            "only a kinetic granular closure provides (closures.granular type = \"frictional_collisional\")".into()
+        }
+        _ => format!("turbulence model `{turbulence}` (closures.turbulence) does not provide"),
+    }
+}

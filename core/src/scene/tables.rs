@@ -1,0 +1,258 @@
+//! The physical tables of a scene: `[meta]`, `[fluid]`, `[particles]` (with
+//! `[particles.contact]`), `[physics]`, `[output]` and `[reference]`.
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use super::check;
+use crate::error::Result;
+use crate::param::ParamRange;
+
+/// Free-form description.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Meta {
+    /// short name, used for output folders
+    #[serde(default)]
+    pub name: String,
+    /// one paragraph
+    #[serde(default)]
+    pub description: String,
+}
+
+/// Carrier fluid.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Fluid {
+    /// density rho_f (kg/m^3)
+    #[serde(default = "default_rho_f")]
+    pub density: f64,
+    /// kinematic viscosity nu_f (m^2/s)
+    #[serde(default = "default_nu_f")]
+    pub viscosity: f64,
+}
+
+fn default_rho_f() -> f64 {
+    1000.0
+}
+fn default_nu_f() -> f64 {
+    1.0e-6
+}
+
+impl Default for Fluid {
+    fn default() -> Self {
+        Self { density: default_rho_f(), viscosity: default_nu_f() }
+    }
+}
+
+/// Which contact law the DEM integrates.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactModel {
+    /// linear spring-dashpot + Coulomb slider
+    #[default]
+    Linear,
+    /// Hertz-Mindlin with restitution-matched damping
+    Hertz,
+}
+
+/// `[particles.contact]`: the contact law of the grains and its parameters.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Contact {
+    /// the law
+    #[serde(default)]
+    pub law: ContactModel,
+    /// normal stiffness k_n of the linear law (N/m); default: the rigid limit of the case
+    /// (see [`Particles::rigid_stiffness`]), resolved at load
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
+    /// k_t / k_n of the linear law
+    #[serde(default = "default_tangential_ratio")]
+    pub tangential_ratio: f64,
+    /// Young modulus of the Hertz law (Pa)
+    #[serde(default = "default_young")]
+    pub young: f64,
+    /// Poisson ratio of the Hertz law
+    #[serde(default = "default_poisson")]
+    pub poisson: f64,
+}
+
+fn default_tangential_ratio() -> f64 {
+    1.0
+}
+fn default_young() -> f64 {
+    1.0e7
+}
+fn default_poisson() -> f64 {
+    0.3
+}
+
+impl Default for Contact {
+    fn default() -> Self {
+        Self {
+            law: ContactModel::Linear,
+            stiffness: None,
+            tangential_ratio: default_tangential_ratio(),
+            young: default_young(),
+            poisson: default_poisson(),
+        }
+    }
+}
+
+/// Grains (monodisperse spheres): what both solvers need, stated once.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Particles {
+    /// diameter d (m)
+    pub diameter: f64,
+    /// density rho_p (kg/m^3)
+    pub density: f64,
+    /// normal restitution coefficient e; the default is the glass beads of Chassagne et
+    /// al. 2023. A kinetic-theory closure takes it unless it sets its own.
+    #[serde(default = "default_restitution")]
+    pub restitution: f64,
+    /// interparticle friction coefficient mu_p (same default and inheritance)
+    #[serde(default = "default_friction")]
+    pub friction: f64,
+    /// contact law (DEM)
+    #[serde(default)]
+    pub contact: Contact,
+}
+
+fn default_restitution() -> f64 {
+    0.7
+}
+fn default_friction() -> f64 {
+    0.4
+}
+
+/// Largest overlap over d under the weight of the bed that still counts as rigid: the
+/// inverse of the stiffness number k_n / (P d) = 2500 (da Cruz et al. 2005 call 1e3 to 1e4
+/// the rigid limit). With rounding up to one significant figure it gives the validated
+/// k_n = 1e4 N/m of Chassagne 2023 case 1 (9.9e3 before rounding).
+const RIGID_OVERLAP: f64 = 4.0e-4;
+
+impl Particles {
+    /// Default normal stiffness of the linear law (N/m) in the rigid limit: the weight
+    /// of the bed column over one grain, P d^2 with P = (rho_p - rho_f) g phi H (rho_f
+    /// = 0 when `dry`; H the bed height, at least 10 d), compresses a contact by
+    /// 4e-4 d; rounded up to one significant figure. None when the grains weigh nothing
+    /// (no gravity, or grains not denser than the fluid): the stiffness must then be given.
+    pub fn rigid_stiffness(&self, rho_f: f64, gravity: f64, bed_phi: f64, bed_height: f64) -> Option<f64> {
+        let d = self.diameter;
+        let pressure = (self.density - rho_f) * gravity.abs() * bed_phi * bed_height.max(10.0 * d);
+        let k = pressure * d / RIGID_OVERLAP;
+        (k.is_finite() && k > 0.0).then(|| round_up_one_figure(k))
+    }
+
+    pub(super) fn check(&self, f: &Path) -> Result<()> {
+        check(f, "particles.diameter", self.diameter, ParamRange::closed(1e-7, 1.0))?;
+        check(f, "particles.density", self.density, ParamRange::closed(1e-3, 1e5))?;
+        check(f, "particles.restitution", self.restitution, ParamRange::open_closed(0.0, 1.0))?;
+        check(f, "particles.friction", self.friction, ParamRange::closed(0.0, 2.0))?;
+        let c = &self.contact;
+        if let Some(k) = c.stiffness {
+            check(f, "particles.contact.stiffness", k, ParamRange::closed(1e-6, 1e12))?;
+        }
+        check(f, "particles.contact.tangential_ratio", c.tangential_ratio, ParamRange::closed(0.0, 10.0))?;
+        check(f, "particles.contact.young", c.young, ParamRange::closed(1.0, 1e13))?;
+        check(f, "particles.contact.poisson", c.poisson, ParamRange::closed(0.0, 0.5))
+    }
+}
+
+fn round_up_one_figure(x: f64) -> f64 {
+    let scale = 10f64.powf(x.log10().floor());
+    (x / scale).ceil() * scale
+}
+
+/// Body forces.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Physics {
+    /// gravity (m/s^2)
+    #[serde(default = "default_g")]
+    pub gravity: f64,
+    /// bed slope sin(alpha)
+    #[serde(default)]
+    pub slope: f64,
+    /// imposed streamwise pressure gradient -dp/dx (Pa/m)
+    #[serde(default)]
+    pub pressure_gradient: f64,
+}
+
+fn default_g() -> f64 {
+    crate::G
+}
+
+impl Default for Physics {
+    fn default() -> Self {
+        Self { gravity: crate::G, slope: 0.0, pressure_gradient: 0.0 }
+    }
+}
+
+/// Output settings.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Output {
+    /// output folder; `out/<meta.name>` when absent
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dir: Option<String>,
+}
+
+/// Reference data overlaid on the run's plots: `[reference]` for one file, or
+/// `[[reference]]` for several (a velocity file and a concentration file, say).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Reference {
+    /// whitespace- or comma-separated columns file, relative to the scene file (made
+    /// absolute when the scene is loaded, so that a resolved scene works from anywhere)
+    pub file: String,
+    /// column names of the file, in order
+    pub columns: Vec<String>,
+    /// added to the file's `z` column (m), for data measured from another origin (from the
+    /// bed surface instead of the bottom of the column, say)
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub z_offset: f64,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
+}
+
+/// `[reference]` (one table) or `[[reference]]` (an array of tables). Each table is read
+/// on its own so that a mistake is reported with its key and index, not as "no variant
+/// matched".
+pub(super) fn one_or_many<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Vec<Reference>, D::Error> {
+    use serde::de::Error as _;
+    let one = |v: toml::Value, key: String| {
+        Reference::deserialize(v).map_err(|e| D::Error::custom(format!("{key}: {}", e.message())))
+    };
+    match Option::<toml::Value>::deserialize(d)? {
+        None => Ok(Vec::new()),
+        Some(v @ toml::Value::Table(_)) => Ok(vec![one(v, "reference".into())?]),
+        Some(toml::Value::Array(items)) => {
+            items.into_iter().enumerate().map(|(i, v)| one(v, format!("reference[{i}]"))).collect()
+        }
+        Some(other) => Err(D::Error::custom(format!(
+            "reference: expected a table ([reference]) or an array of tables ([[reference]]), found {}",
+            other.type_str()
+        ))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rigid_stiffness_of_chassagne_case_1_is_the_validated_1e4() {
+        let p =
+            Particles { diameter: 6e-3, density: 2500.0, restitution: 0.7, friction: 0.4, contact: Contact::default() };
+        // (2500 - 1000) 9.81 0.6 0.075 Pa x 6e-3 m / 4e-4 = 9.93e3, rounded up
+        assert_eq!(p.rigid_stiffness(1000.0, 9.81, 0.6, 0.075), Some(1.0e4));
+        assert_eq!(p.rigid_stiffness(1000.0, 0.0, 0.6, 0.075), None);
+        assert_eq!(round_up_one_figure(0.0123), 0.02);
+    }
+}
