@@ -72,16 +72,28 @@ impl ParamRange {
     }
 }
 
+/// A number as a reader wants it in a message: plain between 1e-4 and 1e6, in
+/// exponent notation outside (1e-308 and f64::MAX would otherwise print with over 300
+/// digits), `NaN` and `inf` as such.
+pub fn number(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || !x.is_finite() || (1e-4..1e6).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 impl fmt::Display for ParamRange {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self.lo {
-            Bound::Open(a) => write!(f, "({a}, ")?,
-            Bound::Closed(a) => write!(f, "[{a}, ")?,
+            Bound::Open(a) => write!(f, "({}, ", number(a))?,
+            Bound::Closed(a) => write!(f, "[{}, ", number(a))?,
             Bound::Unbounded => write!(f, "(-inf, ")?,
         }
         match self.hi {
-            Bound::Open(b) => write!(f, "{b})"),
-            Bound::Closed(b) => write!(f, "{b}]"),
+            Bound::Open(b) => write!(f, "{})", number(b)),
+            Bound::Closed(b) => write!(f, "{}]", number(b)),
             Bound::Unbounded => write!(f, "inf)"),
         }
     }
@@ -129,8 +141,8 @@ pub struct ParamError {
 
 impl ParamError {
     /// Error for key `key` whose value `value` is not within `allowed`.
-    pub fn new(key: impl Into<String>, value: impl fmt::Display, allowed: impl Into<String>) -> Self {
-        Self { key: key.into(), value: value.to_string(), allowed: allowed.into() }
+    pub fn new(key: impl Into<String>, value: f64, allowed: impl Into<String>) -> Self {
+        Self { key: key.into(), value: number(value), allowed: allowed.into() }
     }
 }
 
@@ -167,6 +179,15 @@ pub trait Describe {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn extreme_numbers_print_short() {
+        assert_eq!(number(1e-308), "1e-308");
+        assert_eq!(number(f64::MAX), "1.7976931348623157e308");
+        assert_eq!(number(0.05), "0.05");
+        assert_eq!(number(f64::NAN), "NaN");
+        assert_eq!(ParamRange::closed(1e-7, f64::MAX).to_string(), "[1e-7, 1.7976931348623157e308]");
+    }
 
     #[test]
     fn range_contains_and_display() {

@@ -49,7 +49,7 @@ pub const DEFAULT_MODELS: [(Family, &str); 5] = [
 pub fn de_concrete<T: DeserializeOwned>(value: toml::Value) -> std::result::Result<(), (String, String)> {
     serde_path_to_error::deserialize::<_, T>(value).map(|_| ()).map_err(|e| {
         let path = e.path().to_string();
-        (if path == "." { String::new() } else { path }, e.into_inner().to_string())
+        (if path == "." { String::new() } else { path }, e.into_inner().message().trim().to_string())
     })
 }
 

@@ -145,7 +145,7 @@ pub fn de_path<T: DeserializeOwned>(value: toml::Value, file: &Path, prefix: &st
             (false, true) => prefix.to_string(),
             (false, false) => format!("{prefix}.{inner}"),
         };
-        Error::Key { file: file.to_path_buf(), key, message: e.into_inner().to_string() }
+        Error::Key { file: file.to_path_buf(), key, message: e.into_inner().message().trim().to_string() }
     })
 }
 
@@ -157,7 +157,7 @@ pub fn check(file: &Path, key: &str, value: f64, range: ParamRange) -> Result<()
         Err(Error::OutOfRange {
             file: file.into(),
             key: key.into(),
-            value: value.to_string(),
+            value: crate::param::number(value),
             allowed: range.to_string(),
         })
     }
