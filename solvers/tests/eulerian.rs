@@ -5,7 +5,8 @@
 use std::path::Path;
 
 use saltus_core::scene::{parse_table, Scene};
-use saltus_solvers::eulerian::{Config, Ending, Eulerian};
+use saltus_solvers::eulerian::{Config, Eulerian};
+use saltus_solvers::run::{drive, Ending, Quiet};
 
 fn scene(text: &str) -> Scene {
     saltus_closures::link();
@@ -16,7 +17,7 @@ fn scene(text: &str) -> Scene {
 fn run(s: &Scene) -> (Eulerian<'_>, Ending) {
     let cfg = Config::from_scene(s).expect("config");
     let mut m = Eulerian::new(s, cfg).expect("solver");
-    let ending = m.run(&mut |_| true);
+    let ending = drive(&mut m, &mut Quiet).0;
     (m, ending)
 }
 
@@ -119,7 +120,7 @@ dt_max = 2e-3
 ",
         rho_p = 1000.0 * s_ratio
     ));
-    let (mut m, ending) = run(&s);
+    let (m, ending) = run(&s);
     assert_eq!(ending, Ending::EndTime);
     let g = 9.81;
     let rhs = 4.0 / 3.0 * (s_ratio - 1.0) * g * d * (1.0 - phi0).powf(1.0 + 3.1);
@@ -408,7 +409,10 @@ end_time = 30.0
             let (m, ending) = run(&s);
             if let Ending::Unstable(b) = &ending {
                 prop_assert!(b.time.is_finite() && b.time >= 0.0);
-                prop_assert!(b.cell < cells);
+                match b.place {
+                    saltus_solvers::run::Place::Cell { index, .. } => prop_assert!(index < cells),
+                    ref other => prop_assert!(false, "a column breakdown names a cell: {other:?}"),
+                }
                 prop_assert!(!b.field.is_empty() && !b.reason.is_empty());
             }
             let phi_max = 0.635;

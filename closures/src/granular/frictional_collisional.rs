@@ -381,7 +381,7 @@ mod tests {
         fn batch_equals_scalar(phi in proptest::collection::vec(0.0f64..0.7, 1..64)) {
             for m in [model(), FrictionalCollisional::garzo_dufty_initial()] {
                 let mut out = vec![KineticCoefficients::default(); phi.len()];
-                m.coefficients_batch(&phi, &mut out);
+                m.coefficients_batch(&phi, None, &mut out);
                 for (o, p) in out.iter().zip(&phi) {
                     prop_assert_eq!(*o, m.coefficients(*p, None));
                 }

@@ -204,10 +204,20 @@ pub trait KineticTheory: Send + Sync {
     /// Whether the saltation correction is on.
     fn saltation_enabled(&self) -> bool;
 
-    /// Coefficients over a slice of volume fractions, saltation off.
-    fn coefficients_batch(&self, phi: &[f64], out: &mut [KineticCoefficients]) {
-        for (o, &p) in out.iter_mut().zip(phi) {
-            *o = self.coefficients(p, None);
+    /// Coefficients over a slice of volume fractions, with the saltation input of each
+    /// point (`None`: saltation off). The Eulerian solver calls it once per column.
+    fn coefficients_batch(&self, phi: &[f64], salt: Option<&[SaltationInput]>, out: &mut [KineticCoefficients]) {
+        match salt {
+            Some(salt) => {
+                for ((o, &p), s) in out.iter_mut().zip(phi).zip(salt) {
+                    *o = self.coefficients(p, Some(s));
+                }
+            }
+            None => {
+                for (o, &p) in out.iter_mut().zip(phi) {
+                    *o = self.coefficients(p, None);
+                }
+            }
         }
     }
 }

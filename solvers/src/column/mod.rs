@@ -73,13 +73,16 @@
 //! the field) and a non-finite u_f after a solve is an error naming the time, the cell and
 //! the field, never a panic.
 
+mod fluid;
 mod grid;
 pub mod k_omega;
-mod momentum;
+pub mod operator;
 pub mod tridiagonal;
+pub mod turbulence;
 
+pub use fluid::{Closures, ColumnParams, Coupling, FluidColumn, SteadyReport, TopBoundary};
 pub use grid::Grid;
-pub use momentum::{Closures, ColumnParams, Coupling, FluidColumn, SteadyReport, TopBoundary};
+pub use operator::{Band, ColumnOperator};
 pub use tridiagonal::Tridiagonal;
 
 /// Errors of the column solver.

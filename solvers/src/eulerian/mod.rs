@@ -70,11 +70,25 @@
 //! theory, no drift diffusivity without an active fluctuation closure.
 
 mod block;
+mod coefficients;
 mod config;
+mod k_omega;
+mod momentum;
+mod report;
 mod rheology;
 mod solver;
+mod state;
+mod stepper;
+mod stress;
+mod temperature;
+mod volume_fraction;
 
 pub use block::BlockTridiagonal;
 pub use config::{Config, Domain, Settings, Top};
+pub use report::Derived;
 pub use rheology::{Elastic, Rheology};
-pub use solver::{Breakdown, Derived, Ending, Eulerian, Progress, PHI_FLOOR};
+pub use solver::{Eulerian, PHI_FLOOR};
+
+// the Lagrangian solver's observer still takes the legacy progress record until it
+// implements `run::Stepper`
+pub(crate) use crate::Progress;
