@@ -264,6 +264,10 @@ impl KineticTheory for FrictionalCollisional {
         self.phi_max
     }
 
+    fn elastic_law(&self) -> saltus_core::JohnsonJacksonElastic {
+        self.elastic()
+    }
+
     #[inline]
     fn elastic_pressure(&self, phi: f64) -> f64 {
         self.elastic().pressure(phi)
@@ -337,6 +341,16 @@ mod tests {
         assert_relative_eq!(StaticFriction::fit(0.4), 0.146 + 0.228 * (0.4f64 / 0.232).tanh());
         let m = FrictionalCollisional { static_friction: StaticFriction::Value(0.35), ..model() };
         assert_eq!(m.static_friction(), 0.35);
+    }
+
+    #[test]
+    fn elastic_law_is_the_elastic_pressure() {
+        let m = model();
+        let law = m.elastic_law();
+        for phi in [0.0, 0.5, 0.57, 0.6, 0.62, 0.634] {
+            assert_eq!(law.pressure(phi).to_bits(), m.elastic_pressure(phi).to_bits());
+            assert_eq!(law.derivative(phi).to_bits(), m.elastic_pressure_derivative(phi).to_bits());
+        }
     }
 
     #[test]

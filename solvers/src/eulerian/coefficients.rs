@@ -3,7 +3,7 @@
 //! diffusivity and (in [`super::stress`]) the particle pressure and stress, with the
 //! scratch space of the solves. One batch call per closure family per evaluation.
 
-use saltus_core::{ColumnView, KineticCoefficients, SaltationInput, TurbulencePoint};
+use saltus_core::{ColumnView, KineticCoefficients, LocalState, SaltationInput, TurbulencePoint};
 
 use super::block::BlockTridiagonal;
 use super::config::Top;
@@ -74,6 +74,21 @@ pub(super) struct Scratch {
     pub coef_h: Vec<KineticCoefficients>,
     /// shear rate of the new u_f for k and omega
     pub shear: Vec<f64>,
+    /// C_D per cell and the drag-dissipation factor c_J of the temperature step
+    pub cd: Vec<f64>,
+    pub c_j: Vec<f64>,
+    /// local rheologies: states, control numbers and pressures of the cells (at phi and
+    /// phi + dphi) and of the faces
+    pub cell_states: Vec<LocalState>,
+    pub cell_x: Vec<f64>,
+    pub cell_x_h: Vec<f64>,
+    pub cell_p: Vec<f64>,
+    pub cell_p_h: Vec<f64>,
+    pub face_states: Vec<LocalState>,
+    pub face_p: Vec<f64>,
+    pub face_x: Vec<f64>,
+    pub face_mu: Vec<f64>,
+    pub face_packing: Vec<f64>,
 }
 
 /// Relative step of the batch difference of the drag kernel in Re.
@@ -113,6 +128,8 @@ impl Coefficients {
 impl Scratch {
     pub fn new(n: usize) -> Self {
         let salt = SaltationInput { sqrt_t: 0.0, k_drag: 0.0, particle_density: 0.0, diameter: 0.0 };
+        let state =
+            LocalState { shear_rate: 0.0, pressure: 0.0, diameter: 0.0, particle_density: 0.0, fluid_viscosity: 0.0 };
         Self {
             work: vec![0.0; n],
             face_coeffs: vec![0.0; 3 * (n + 1)],
@@ -129,6 +146,18 @@ impl Scratch {
             phi_h: vec![0.0; n],
             coef_h: vec![KineticCoefficients::default(); n],
             shear: vec![0.0; n],
+            cd: vec![0.0; n],
+            c_j: vec![0.0; n],
+            cell_states: vec![state; n],
+            cell_x: vec![0.0; n],
+            cell_x_h: vec![0.0; n],
+            cell_p: vec![0.0; n],
+            cell_p_h: vec![0.0; n],
+            face_states: vec![state; n + 1],
+            face_p: vec![0.0; n + 1],
+            face_x: vec![0.0; n + 1],
+            face_mu: vec![0.0; n + 1],
+            face_packing: vec![0.0; n + 1],
         }
     }
 }

@@ -50,7 +50,7 @@ impl Eulerian<'_> {
             out.w_p.push(if s.phi[i] > 1e-6 { f / s.phi[i] } else { 0.0 });
             let x = match self.m.rheology {
                 Rheology::Local { model, .. } => model.control_number(&self.local_state(co.gamma_p[i], p)),
-                Rheology::Kinetic(_) => self.local_state(co.gamma_p[i], co.pres[i].p).inertial_number(),
+                Rheology::Kinetic { .. } => self.local_state(co.gamma_p[i], co.pres[i].p).inertial_number(),
             };
             out.control.push(if x.is_finite() { x } else { 0.0 });
         }

@@ -89,7 +89,7 @@ impl<'a> Eulerian<'a> {
                 .into(),
         })?;
         let rheology = if let Some(k) = granular.as_kinetic() {
-            Rheology::Kinetic(k)
+            Rheology::Kinetic { model: k, elastic: k.elastic_law() }
         } else if let Some(l) = granular.as_local() {
             let phi_max = l.packing(0.0);
             if cfg.settings.elastic_phi_rlp >= phi_max {
@@ -181,7 +181,7 @@ impl<'a> Eulerian<'a> {
                 inside * bed_phi + (1.0 - inside) * d.suspension_phi
             })
             .collect();
-        let kinetic = matches!(m.rheology, Rheology::Kinetic(_));
+        let kinetic = matches!(m.rheology, Rheology::Kinetic { .. });
         let t0 = if kinetic { cfg.settings.initial_temperature } else { 0.0 };
         let mass0 = phi.iter().zip(dz).map(|(p, h)| p * h).sum();
         // the fluid above the initial bed carries the driving (at least the top cell)

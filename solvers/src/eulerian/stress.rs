@@ -26,8 +26,8 @@ impl Eulerian<'_> {
         let n = self.len();
         let r = self.cfg.settings.shear_rate_regularisation;
         match self.m.rheology {
-            Rheology::Kinetic(kt) => {
-                self.kinetic_coefficients(kt);
+            Rheology::Kinetic { model: kt, elastic } => {
+                self.kinetic_coefficients(kt, &elastic);
                 let mu_s = kt.static_friction();
                 let co = &mut self.co;
                 for j in 0..=n {
@@ -44,13 +44,19 @@ impl Eulerian<'_> {
             Rheology::Local { model, elastic } => {
                 self.local_pressures(model, elastic);
                 self.surface_overburden();
+                // mu(X) at the face states: one batch of control numbers, one of friction
                 for j in 0..=n {
                     let (l, rr) = (j.saturating_sub(1), j.min(n - 1));
                     let co = &self.co;
-                    let g = co.face_gamma[j];
                     let p = 0.5 * (co.pres[l].p + co.overburden[l] + co.pres[rr].p + co.overburden[rr]);
-                    let mu = model.friction(model.control_number(&self.local_state(g, p)));
-                    let (t0, sec) = coulomb(mu * p, g, r);
+                    self.sc.face_p[j] = p;
+                    self.sc.face_states[j] = self.local_state(co.face_gamma[j], p);
+                }
+                let sc = &mut self.sc;
+                model.control_number_batch(&sc.face_states, &mut sc.face_x);
+                model.eval_batch(&sc.face_x, &mut sc.face_mu, &mut sc.face_packing);
+                for j in 0..=n {
+                    let (t0, sec) = coulomb(sc.face_mu[j] * sc.face_p[j], self.co.face_gamma[j], r);
                     self.co.eta_face[j] = sec;
                     self.co.sigma_face[j] = 0.0;
                     self.co.tau_p[j] = t0;
@@ -67,7 +73,7 @@ impl Eulerian<'_> {
     /// Kinetic coefficients of every cell in one batch call (with the saltation input of
     /// each cell when the closure corrects for saltation, eq 3.6), dF1/dphi by one batch
     /// difference, and the pressure, viscosity and conductivity of eqs 2.19-2.21.
-    fn kinetic_coefficients(&mut self, kt: &dyn KineticTheory) {
+    fn kinetic_coefficients(&mut self, kt: &dyn KineticTheory, elastic: &Elastic) {
         let n = self.len();
         let c = self.c;
         let salt = kt.saltation_enabled();
@@ -98,29 +104,44 @@ impl Eulerian<'_> {
             self.co.kappa[i] = c.rho_p * c.d * co.f3 * st;
         }
         for i in 0..n {
-            self.co.pres[i] = self.kinetic_pressure(kt, i, self.s.temp[i].max(0.0));
+            self.co.pres[i] = self.kinetic_pressure(elastic, i, self.s.temp[i].max(0.0));
         }
     }
 
     /// Particle pressure of cell `i` at temperature `t`, linearised in phi:
-    /// p_el + rho_p F1 T with slope p_el' + rho_p T F1'.
-    pub(super) fn kinetic_pressure(&self, kt: &dyn KineticTheory, i: usize, t: f64) -> Pressure {
+    /// p_el + rho_p F1 T with slope p_el' + rho_p T F1' (eqs 2.14, 2.19).
+    pub(super) fn kinetic_pressure(&self, elastic: &Elastic, i: usize, t: f64) -> Pressure {
         let phi = self.s.phi[i].max(0.0);
-        let p_el = kt.elastic_pressure(phi);
-        let a = kt.elastic_pressure_derivative(phi) + self.c.rho_p * t * self.co.f1_slope[i];
+        let p_el = elastic.pressure(phi);
+        let a = elastic.derivative(phi) + self.c.rho_p * t * self.co.f1_slope[i];
         let p = p_el + self.c.rho_p * self.co.coef[i].f1 * t;
         Pressure { p, p_el, a, b: p - a * phi }
     }
 
     /// Pressure of a local rheology at every cell from the current phi and the cell shear
-    /// rate of the current u_p, linearised in phi.
+    /// rate of the current u_p, linearised in phi by one batch difference: elastic plus the
+    /// dilatancy pressure at which packing(X) = phi ([`Rheology::local_pressure`]).
     fn local_pressures(&mut self, model: &dyn LocalRheology, elastic: Elastic) {
-        for i in 0..self.len() {
+        let n = self.len();
+        for i in 0..n {
             let phi = self.s.phi[i].max(0.0);
-            let st = self.local_state(self.co.gamma_p[i], 0.0);
-            let p = Rheology::local_pressure(model, &elastic, &st, phi);
+            self.sc.phi_c[i] = phi;
+            self.sc.phi_h[i] = phi + DPHI;
+            self.sc.cell_states[i] = self.local_state(self.co.gamma_p[i], 0.0);
+        }
+        let sc = &mut self.sc;
+        model.control_of_packing_batch(&sc.phi_c, &mut sc.cell_x);
+        model.control_of_packing_batch(&sc.phi_h, &mut sc.cell_x_h);
+        model.pressure_at_batch(&sc.cell_states, &sc.cell_x, &mut sc.cell_p);
+        model.pressure_at_batch(&sc.cell_states, &sc.cell_x_h, &mut sc.cell_p_h);
+        // no shear-induced pressure at or above the packing at zero shear (x = 0), nor where
+        // it is not finite
+        let shear = |x: f64, p: f64| if x > 0.0 && p.is_finite() { p } else { 0.0 };
+        for i in 0..n {
+            let phi = sc.phi_c[i];
+            let p = elastic.pressure(phi) + shear(sc.cell_x[i], sc.cell_p[i]);
             let a = if phi + DPHI < elastic.phi_max {
-                ((Rheology::local_pressure(model, &elastic, &st, phi + DPHI) - p) / DPHI).max(0.0)
+                ((elastic.pressure(phi + DPHI) + shear(sc.cell_x_h[i], sc.cell_p_h[i]) - p) / DPHI).max(0.0)
             } else {
                 elastic.derivative(phi)
             };

@@ -10,7 +10,7 @@ impl Eulerian<'_> {
     /// the new u_p (the column operator's, exact on stretched grids), conduction,
     /// collisional and drag dissipation implicit, so T stays >= 0.
     pub(super) fn solve_temperature(&mut self, dt: f64) -> Result<(), Breakdown> {
-        let Rheology::Kinetic(kt) = self.m.rheology else { return Ok(()) };
+        let Rheology::Kinetic { model: kt, elastic } = self.m.rheology else { return Ok(()) };
         let n = self.len();
         let c = self.c;
         let top = self.op.stress_free_shear_top(&self.s.up);
@@ -19,13 +19,16 @@ impl Eulerian<'_> {
         let h = self.op.spacing();
         let cd_inf = self.m.drag.cd_inf();
         let (s, co) = (&self.s, &self.co);
+        for (cd, &r) in self.sc.cd.iter_mut().zip(&co.cd_ratio) {
+            *cd = cd_inf / r.max(1e-300);
+        }
+        kt.drag_dissipation_batch(cd_inf, &self.sc.cd, &mut self.sc.c_j);
         let t = &mut self.sc.tri;
         for i in 0..n {
             let phi = s.phi[i].max(0.0);
             let m = 1.5 * c.rho_p * phi.max(PHI_FLOOR) * dz[i] / dt;
             let st = s.temp[i].max(0.0).sqrt();
-            let jfac = kt.drag_dissipation_factor(cd_inf, cd_inf / co.cd_ratio[i].max(1e-300));
-            let sink = c.rho_p / c.d * co.coef[i].f4 * st + jfac * co.beta[i];
+            let sink = c.rho_p / c.d * co.coef[i].f4 * st + self.sc.c_j[i] * co.beta[i];
             let prod = co.eta_kin[i] * co.gamma_p[i] * co.gamma_p[i];
             t.lower[i] = 0.0;
             t.upper[i] = 0.0;
@@ -51,7 +54,7 @@ impl Eulerian<'_> {
         }
         // the phi step sees the new temperature
         for i in 0..n {
-            self.co.pres[i] = self.kinetic_pressure(kt, i, self.s.temp[i]);
+            self.co.pres[i] = self.kinetic_pressure(&elastic, i, self.s.temp[i]);
         }
         Ok(())
     }
