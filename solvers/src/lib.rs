@@ -1,6 +1,6 @@
 //! # saltus-solvers
 //!
-//! Solvers of saltus. The entry point [`run`] dispatches on the scene's `[solver] type`:
+//! Solvers of saltus. The entry point [`run()`] dispatches on the scene's `[solver] type`:
 //! `eulerian` ([`eulerian`], the two-fluid column of Chassagne et al. 2023) and
 //! `lagrangian` ([`lagrangian`], soft-sphere DEM coupled to the column, Maurin et al.
 //! 2015). [`mod@column`] is the fluid column shared by both.
@@ -24,7 +24,7 @@ use saltus_core::Error;
 
 pub use output::{Profiles, Summary};
 
-/// Progress record of the legacy observer of [`run`] (the driver's is
+/// Progress record of the legacy observer of [`run()`] (the driver's is
 /// [`run::Progress`]); kept until the Lagrangian solver implements [`run::Stepper`].
 #[derive(Clone, Copy, Debug)]
 pub struct Progress {

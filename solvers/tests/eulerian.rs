@@ -472,3 +472,37 @@ fn all_chassagne_cases_reach_steady_state() {
     println!("e = 0.9 (case 17) against e = 0.7 (case 1): qs* ratio {:.3}", qs_star[16] / qs_star[0]);
     assert!(qs_star[8] > 2.0 * qs_star[0], "frictionless grains: {} vs {}", qs_star[8], qs_star[0]);
 }
+
+/// Reading a run does not advance it: `derived`, `particle_pressure` and the report of
+/// the stepper leave the state and the coefficients as they were (the same profiles twice,
+/// bit for bit), every number of the report is finite, phi is not negative, and the
+/// driver's progress counts the solver's accepted steps.
+#[test]
+fn reading_case01_does_not_advance_it_and_writes_finite_numbers() {
+    use saltus_solvers::run::Stepper;
+    saltus_closures::link();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let s = Scene::from_file_with(root.join("cases/chassagne2023/case01.toml"), &["domain.cells=60".to_string()])
+        .expect("case01");
+    let (m, ending) = run(&s);
+    assert_eq!(ending, Ending::Steady);
+    let before = (m.phi().to_vec(), m.u_f().to_vec(), m.eddy_viscosity().to_vec(), m.steps(), m.time());
+    let (d1, p1) = (m.derived(), m.particle_pressure());
+    let report = m.report(&ending, 1.0);
+    let (d2, p2) = (m.derived(), m.particle_pressure());
+    let after = (m.phi().to_vec(), m.u_f().to_vec(), m.eddy_viscosity().to_vec(), m.steps(), m.time());
+    assert_eq!(before, after);
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    for (a, b) in [(&d1.tau_p, &d2.tau_p), (&d1.tau_f, &d2.tau_f), (&d1.p_p, &d2.p_p), (&d1.control, &d2.control)] {
+        assert_eq!(bits(a), bits(b));
+    }
+    assert_eq!(bits(&p1), bits(&p2));
+    for (name, values) in &report.profiles.columns {
+        assert!(values.iter().all(|v| v.is_finite()), "{name} has a non-finite value");
+    }
+    let phi = &report.profiles.columns.iter().find(|c| c.0 == "phi").expect("phi").1;
+    assert!(phi.iter().all(|&p| p >= 0.0));
+    assert_eq!(m.progress().steps, m.steps() as u64);
+    assert_eq!(report.summary.steps, m.steps());
+    assert_eq!(report.summary.ending, "steady");
+}

@@ -186,7 +186,6 @@ impl Eulerian<'_> {
     pub(super) fn evaluate(&mut self) -> Result<(), Breakdown> {
         self.shear_rates();
         self.evaluate_drag();
-        let n = self.len();
         let c = self.c;
         self.m.viscosity.ratio_batch(&self.s.phi, &mut self.co.visc_ratio);
         let kw_fields = self.s.kw.as_ref().map(|kw| kw.col.fields());
@@ -206,9 +205,9 @@ impl Eulerian<'_> {
         }
         self.s.eddy.relax(first);
         let nu_t = self.s.eddy.values();
-        for i in 0..n {
+        for (i, &nt) in nu_t.iter().enumerate() {
             let eps = 1.0 - self.s.phi[i].max(0.0);
-            self.co.fluid_k[i] = eps * (c.nu_f * self.co.visc_ratio[i] + nu_t[i]);
+            self.co.fluid_k[i] = eps * (c.nu_f * self.co.visc_ratio[i] + nt);
         }
         self.op.conductances(c.rho_f, &self.co.fluid_k, &mut self.co.fluid_cond);
         self.evaluate_drift();
@@ -269,15 +268,14 @@ impl Eulerian<'_> {
     /// scales and Reynolds stress of [`crate::inputs`].
     fn evaluate_drift(&mut self) {
         let Some(fl) = self.m.fluctuation else { return };
-        let n = self.len();
         let g = self.op.grid();
         let bed = inputs::bed_surface(g.centres(), &self.s.phi, self.cfg.domain.bed_height);
         let scales = inputs::flow_scales(g.centres(), g.dz(), &self.s.uf, g.height(), bed);
         let nu_t = self.s.eddy.values();
-        for i in 0..n {
+        for (i, &nt) in nu_t.iter().enumerate() {
             let (k, omega) = self.s.kw.as_ref().map_or((0.0, 0.0), |kw| (kw.col.k[i], kw.col.omega[i]));
-            let reynolds_stress = inputs::reynolds_stress(nu_t[i], self.co.gamma_f[i]);
-            self.sc.turbulence[i] = TurbulencePoint { k, omega, nu_t: nu_t[i], reynolds_stress };
+            let reynolds_stress = inputs::reynolds_stress(nt, self.co.gamma_f[i]);
+            self.sc.turbulence[i] = TurbulencePoint { k, omega, nu_t: nt, reynolds_stress };
         }
         fl.diffusivity_batch(&self.sc.turbulence, &scales, &mut self.co.drift);
         for d in &mut self.co.drift {

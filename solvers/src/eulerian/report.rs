@@ -40,10 +40,10 @@ impl Eulerian<'_> {
         let (s, co, c) = (&self.s, &self.co, self.c);
         let nu_t = s.eddy.values();
         let mut out = Derived::default();
-        for i in 0..n {
+        for (i, &nt) in nu_t.iter().enumerate().take(n) {
             let eps = 1.0 - s.phi[i].max(0.0);
             out.tau_p.push(0.5 * (co.tau_p[i] + co.tau_p[i + 1]));
-            out.tau_f.push(c.rho_f * eps * (c.nu_f * co.visc_ratio[i] + nu_t[i]) * co.gamma_f[i]);
+            out.tau_f.push(c.rho_f * eps * (c.nu_f * co.visc_ratio[i] + nt) * co.gamma_f[i]);
             let p = co.pres[i].p + co.overburden[i];
             out.p_p.push(p);
             let f = 0.5 * (s.flux[i] + s.flux[i + 1]);

@@ -65,8 +65,8 @@ impl Eulerian<'_> {
         }
         self.co.tau_p[n] = 0.0;
         let h = self.op.spacing();
-        for j in 1..n {
-            self.co.part_cond[j] = self.co.eta_face[j] / h[j];
+        for ((cond, &eta), &hj) in self.co.part_cond.iter_mut().zip(&self.co.eta_face).zip(h).take(n).skip(1) {
+            *cond = eta / hj;
         }
     }
 

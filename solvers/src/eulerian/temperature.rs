@@ -24,19 +24,19 @@ impl Eulerian<'_> {
         }
         kt.drag_dissipation_batch(cd_inf, &self.sc.cd, &mut self.sc.c_j);
         let t = &mut self.sc.tri;
-        for i in 0..n {
+        for (i, &dzi) in dz.iter().enumerate() {
             let phi = s.phi[i].max(0.0);
-            let m = 1.5 * c.rho_p * phi.max(PHI_FLOOR) * dz[i] / dt;
+            let m = 1.5 * c.rho_p * phi.max(PHI_FLOOR) * dzi / dt;
             let st = s.temp[i].max(0.0).sqrt();
             let sink = c.rho_p / c.d * co.coef[i].f4 * st + self.sc.c_j[i] * co.beta[i];
             let prod = co.eta_kin[i] * co.gamma_p[i] * co.gamma_p[i];
             t.lower[i] = 0.0;
             t.upper[i] = 0.0;
-            t.diag[i] = m + sink * dz[i];
-            t.rhs[i] = m * s.temp[i].max(0.0) + prod * dz[i];
+            t.diag[i] = m + sink * dzi;
+            t.rhs[i] = m * s.temp[i].max(0.0) + prod * dzi;
         }
-        for j in 1..n {
-            let k = 0.5 * (co.kappa[j - 1] + co.kappa[j]) / h[j];
+        for (j, &hj) in h.iter().enumerate().take(n).skip(1) {
+            let k = 0.5 * (co.kappa[j - 1] + co.kappa[j]) / hj;
             t.diag[j - 1] += k;
             t.upper[j - 1] -= k;
             t.diag[j] += k;

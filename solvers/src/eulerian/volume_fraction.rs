@@ -96,8 +96,8 @@ impl Eulerian<'_> {
             self.s.flux[j] =
                 coeffs[3 * j] * self.sc.work[j - 1] + coeffs[3 * j + 1] * self.sc.work[j] + coeffs[3 * j + 2];
         }
-        for i in 0..n {
-            self.sc.work[i] = self.s.phi[i] - dt / dz[i] * (self.s.flux[i + 1] - self.s.flux[i]);
+        for (i, &dzi) in dz.iter().enumerate() {
+            self.sc.work[i] = self.s.phi[i] - dt / dzi * (self.s.flux[i + 1] - self.s.flux[i]);
         }
         let phi_max = self.m.rheology.phi_max();
         for i in 0..n {
