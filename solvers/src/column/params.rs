@@ -19,7 +19,7 @@ pub enum TopBoundary {
     Symmetry,
 }
 
-/// Physical and numerical parameters of a [`FluidColumn`].
+/// Physical and numerical parameters of a [`super::FluidColumn`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ColumnParams {
     /// fluid density rho_f (kg/m^3)
@@ -44,8 +44,8 @@ pub struct ColumnParams {
     /// in-bed omega of a two-equation closure (Cheng et al. eq 34); `None`: that of the
     /// driving over the whole column, sqrt((g sin(alpha) + G_x / rho_f) H)
     pub friction_velocity: Option<f64>,
-    /// under-relaxation omega in (0, 1] of nu_t in [`FluidColumn::step`] (after the first
-    /// step) and [`FluidColumn::solve_steady`]: nu_t <- omega nu_t(u) + (1 - omega) nu_t. The default 0.5 turns the Picard map of a
+    /// under-relaxation omega in (0, 1] of nu_t in [`super::FluidColumn::step`] (after the first
+    /// step) and [`super::FluidColumn::solve_steady`]: nu_t <- omega nu_t(u) + (1 - omega) nu_t. The default 0.5 turns the Picard map of a
     /// fully turbulent mixing-length layer (nu_t <- C / nu_t, which oscillates with
     /// omega = 1) into a Newton (Babylonian) iteration.
     pub relaxation: f64,
@@ -92,12 +92,12 @@ pub struct Coupling<'a> {
     pub u_p: &'a [f64],
 }
 
-/// Outcome of [`FluidColumn::solve_steady`].
+/// Outcome of [`super::FluidColumn::solve_steady`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SteadyReport {
     /// linear solves performed
     pub iterations: usize,
-    /// final relative residual of the steady equation (see [`FluidColumn::residual`])
+    /// final relative residual of the steady equation (see [`super::FluidColumn::residual`])
     pub residual: f64,
 }
 
