@@ -115,4 +115,36 @@ mod tests {
         assert_eq!(s.bulk_velocity, 1.5);
         assert_eq!(bed_surface(&zc, &[0.0; 4], 0.25), 0.25);
     }
+
+    /// The kernel evaluates C_D at the hindrance's declared Re*: Dallavalle C_D = 0.4 +
+    /// 24.4 / Re* (Maurin et al. 2015 eq 12) with Di Felice's superficial Re* = (1 - phi) Re_p
+    /// and Richardson-Zaki's interstitial one; C_D Re_p = cd_re(Re*) / c(phi) stays finite
+    /// (24.4 / c) as Re_p -> 0.
+    #[test]
+    fn the_kernel_uses_the_declared_convention() {
+        use saltus_closures::drag::Dallavalle;
+        use saltus_closures::hindrance::{DiFelice, RichardsonZaki};
+        let drag = Dallavalle::default();
+        let phi = [0.0, 0.3, 0.5, 0.3];
+        let re = [10.0, 10.0, 100.0, 0.0];
+        let mut pts = DragPoints::new(4);
+        let sup = DiFelice::default();
+        let k = DragKernel::new(&drag, &sup);
+        assert_eq!(k.convention(), DragReynolds::Superficial);
+        k.evaluate(&phi, &re, &mut pts);
+        for i in 0..4 {
+            let re_star = (1.0 - phi[i]) * re[i];
+            assert_eq!(pts.re_star[i], re_star);
+            assert!((pts.cd_re[i] - (0.4 * re_star + 24.4)).abs() < 1e-12);
+            assert_eq!(pts.factor[i], sup.factor(phi[i], re[i]));
+        }
+        // C_D(Re*) Re_p at Re_p -> 0: 24.4 / (1 - phi)
+        assert!((pts.cd_re[3] / k.reynolds_ratio(phi[3]) - 24.4 / 0.7).abs() < 1e-12);
+        let rz = RichardsonZaki::default();
+        let k = DragKernel::new(&drag, &rz);
+        assert_eq!(k.convention(), DragReynolds::Interstitial);
+        k.evaluate(&phi, &re, &mut pts);
+        assert_eq!(pts.re_star, re);
+        assert_eq!(pts.factor[2], 0.5f64.powf(-3.1));
+    }
 }
