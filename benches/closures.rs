@@ -1,6 +1,10 @@
 //! Batch evaluation of every closure family on a 200-point column (ns per point =
-//! reported time / 200). Models are built through the scene machinery, so each batch is
-//! one virtual call, as in the solvers.
+//! reported time / 200), through the batch methods the solvers call once per column
+//! evaluation: C_D Re (Eulerian drag kernel) and C_D (DEM), the hindrance factor, the
+//! viscosity ratio, the local rheology's face path (control numbers, then friction) and
+//! cell path (packing inverse, then pressure), the kinetic coefficients with and without
+//! saltation, the eddy viscosity and the fluctuation diffusivity. Models are built through
+//! the scene machinery, so each batch is one virtual call, as in the solvers.
 
 use std::hint::black_box;
 use std::path::Path;
@@ -10,7 +14,7 @@ use saltus_core::closure::Family;
 use saltus_core::scene::closure_from_value;
 use saltus_core::{
     ColumnView, DragLaw, EffectiveViscosity, FlowScales, Fluctuation, GranularStress, Hindrance, KineticCoefficients,
-    SaltationInput, Turbulence, TurbulencePoint,
+    LocalState, SaltationInput, Turbulence, TurbulencePoint,
 };
 
 const N: usize = 200;
@@ -46,7 +50,8 @@ fn benches(c: &mut Criterion) {
 
     for name in ["stokes", "dallavalle", "schiller_naumann", "haider_levenspiel"] {
         let m: Box<dyn DragLaw> = model(Family::Drag, &format!("type = \"{name}\""));
-        g.bench_function(format!("drag/{name}"), |b| b.iter(|| m.cd_batch(black_box(&re), &mut out)));
+        g.bench_function(format!("drag/{name}_cd_re"), |b| b.iter(|| m.cd_re_batch(black_box(&re), &mut out)));
+        g.bench_function(format!("drag/{name}_cd"), |b| b.iter(|| m.cd_batch(black_box(&re), &mut out)));
     }
     for name in ["none", "richardson_zaki", "di_felice"] {
         let m: Box<dyn Hindrance> = model(Family::Hindrance, &format!("type = \"{name}\""));
@@ -56,29 +61,43 @@ fn benches(c: &mut Criterion) {
         let m: Box<dyn EffectiveViscosity> = model(Family::Viscosity, &format!("type = \"{name}\""));
         g.bench_function(format!("viscosity/{name}"), |b| b.iter(|| m.ratio_batch(black_box(&phi), &mut out)));
     }
+    let states: Vec<LocalState> = (0..N)
+        .map(|i| LocalState {
+            shear_rate: dudz[i],
+            pressure: 1.0 + 100.0 * phi[i],
+            diameter: 6e-3,
+            particle_density: 2500.0,
+            fluid_viscosity: 1e-3,
+        })
+        .collect();
     for name in ["mu_i", "mu_k"] {
         let m: Box<dyn GranularStress> = model(Family::Granular, &format!("type = \"{name}\""));
         let local = m.as_local().expect("local rheology");
-        let mut phi_out = vec![0.0; N];
-        g.bench_function(format!("granular/{name}"), |b| {
-            b.iter(|| local.eval_batch(black_box(&re), &mut out, &mut phi_out))
+        let (mut x, mut phi_out) = (vec![0.0; N], vec![0.0; N]);
+        g.bench_function(format!("granular/{name}_faces"), |b| {
+            b.iter(|| {
+                local.control_number_batch(black_box(&states), &mut x);
+                local.eval_batch(&x, &mut out, &mut phi_out)
+            })
+        });
+        g.bench_function(format!("granular/{name}_cells"), |b| {
+            b.iter(|| {
+                local.control_of_packing_batch(black_box(&phi), &mut x);
+                local.pressure_at_batch(&states, &x, &mut out)
+            })
         });
     }
     let fc: Box<dyn GranularStress> = model(Family::Granular, "type = \"frictional_collisional\"");
     let kt = fc.as_kinetic().expect("kinetic");
     let mut coefs = vec![KineticCoefficients::default(); N];
     g.bench_function("granular/frictional_collisional_coefficients", |b| {
-        b.iter(|| kt.coefficients_batch(black_box(&phi), &mut coefs))
+        b.iter(|| kt.coefficients_batch(black_box(&phi), None, &mut coefs))
     });
     let salt: Vec<SaltationInput> = (0..N)
         .map(|i| SaltationInput { sqrt_t: 0.05, k_drag: 1e3 + i as f64, particle_density: 2500.0, diameter: 6e-3 })
         .collect();
     g.bench_function("granular/frictional_collisional_with_saltation", |b| {
-        b.iter(|| {
-            for ((o, &p), s) in coefs.iter_mut().zip(black_box(&phi)).zip(&salt) {
-                *o = kt.coefficients(p, Some(s));
-            }
-        })
+        b.iter(|| kt.coefficients_batch(black_box(&phi), Some(&salt), &mut coefs))
     });
     for form in ["prandtl", "li_sawamoto", "berzi_fraccarollo"] {
         let m: Box<dyn Turbulence> = model(Family::Turbulence, &format!("type = \"mixing_length\"\nform = \"{form}\""));

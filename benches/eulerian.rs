@@ -9,7 +9,8 @@ use std::path::Path;
 use criterion::{criterion_group, criterion_main, Criterion};
 use saltus_core::scene::Scene;
 use saltus_solvers::column::{Closures, ColumnParams, Coupling, FluidColumn, Grid, TopBoundary};
-use saltus_solvers::eulerian::{Config, Ending, Eulerian};
+use saltus_solvers::eulerian::{Config, Eulerian};
+use saltus_solvers::run::{drive, Ending, Quiet};
 
 fn case01(c: &mut Criterion) {
     saltus_closures::link();
@@ -22,7 +23,7 @@ fn case01(c: &mut Criterion) {
         group.bench_function(format!("{cells}_cells"), |b| {
             b.iter(|| {
                 let mut m = Eulerian::new(&scene, cfg.clone()).expect("solver");
-                let ending = m.run(&mut |_| true);
+                let ending = drive(&mut m, &mut Quiet).0;
                 assert_eq!(ending, Ending::Steady);
                 m.steps()
             })
@@ -41,7 +42,7 @@ fn channel_k_omega(c: &mut Criterion) {
     group.bench_function("eulerian_120_stretched", |b| {
         b.iter(|| {
             let mut m = Eulerian::new(&scene, cfg.clone()).expect("solver");
-            assert_eq!(m.run(&mut |_| true), Ending::Steady);
+            assert_eq!(drive(&mut m, &mut Quiet).0, Ending::Steady);
             m.steps()
         })
     });

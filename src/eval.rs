@@ -211,7 +211,7 @@ pub fn evaluate(
             let phi = need(input, "phi", family, origin)?;
             check_fraction(phi, origin)?;
             let mut c = vec![saltus_core::KineticCoefficients::default(); n];
-            kt.coefficients_batch(phi, &mut c);
+            kt.coefficients_batch(phi, None, &mut c);
             out.push("g0", c.iter().map(|c| c.g0).collect());
             out.push("f1", c.iter().map(|c| c.f1).collect());
             out.push("f2", c.iter().map(|c| c.f2).collect());

@@ -28,7 +28,7 @@ pub use closure::granular::{
     GranularStress, JohnsonJacksonElastic, KineticCoefficients, KineticTheory, LocalRheology, LocalState,
     SaltationInput,
 };
-pub use closure::hindrance::Hindrance;
+pub use closure::hindrance::{DragReynolds, Hindrance};
 pub use closure::turbulence::{ColumnView, Turbulence};
 pub use closure::viscosity::EffectiveViscosity;
 pub use closure::Family;

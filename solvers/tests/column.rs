@@ -535,14 +535,15 @@ fn parameters_are_validated() {
 #[test]
 fn k_omega_channel_matches_the_eulerian_solver() {
     use saltus_core::scene::Scene;
-    use saltus_solvers::eulerian::{Config, Ending, Eulerian};
+    use saltus_solvers::eulerian::{Config, Eulerian};
+    use saltus_solvers::run::{drive, Ending, Quiet};
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     saltus_closures::link();
     let scene = Scene::from_file_with(root.join("cases/verification/channel_re590.toml"), &[]).expect("scene");
     let cfg = Config::from_scene(&scene).expect("config");
     let (n, ratio, h) = (cfg.domain.cells, cfg.domain.stretching, cfg.domain.water_depth);
     let mut eul = Eulerian::new(&scene, cfg).expect("solver");
-    assert_eq!(eul.run(&mut |_| true), Ending::Steady);
+    assert_eq!(drive(&mut eul, &mut Quiet).0, Ending::Steady);
     let (k_e, w_e) = eul.k_omega().expect("k-omega state");
 
     let ko = turbulence("type = \"k_omega\"");

@@ -10,7 +10,8 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use saltus_core::scene::{parse_table, Scene};
-use saltus_solvers::eulerian::{Config, Ending, Eulerian};
+use saltus_solvers::eulerian::{Config, Eulerian};
+use saltus_solvers::run::{drive, Ending, Quiet};
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
@@ -25,7 +26,7 @@ fn run(s: &Scene) -> (Eulerian<'_>, Ending, f64) {
     let cfg = Config::from_scene(s).expect("config");
     let mut m = Eulerian::new(s, cfg).expect("solver");
     let t = Instant::now();
-    let ending = m.run(&mut |_| true);
+    let ending = drive(&mut m, &mut Quiet).0;
     (m, ending, t.elapsed().as_secs_f64())
 }
 

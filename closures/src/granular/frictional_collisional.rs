@@ -264,6 +264,10 @@ impl KineticTheory for FrictionalCollisional {
         self.phi_max
     }
 
+    fn elastic_law(&self) -> saltus_core::JohnsonJacksonElastic {
+        self.elastic()
+    }
+
     #[inline]
     fn elastic_pressure(&self, phi: f64) -> f64 {
         self.elastic().pressure(phi)
@@ -351,6 +355,16 @@ mod tests {
     }
 
     #[test]
+    fn elastic_law_is_the_elastic_pressure() {
+        let m = model();
+        let law = m.elastic_law();
+        for phi in [0.0, 0.5, 0.57, 0.6, 0.62, 0.634] {
+            assert_eq!(law.pressure(phi).to_bits(), m.elastic_pressure(phi).to_bits());
+            assert_eq!(law.derivative(phi).to_bits(), m.elastic_pressure_derivative(phi).to_bits());
+        }
+    }
+
+    #[test]
     fn elastic_pressure_shape() {
         let m = model();
         assert_eq!(m.elastic_pressure(0.0), 0.0);
@@ -392,7 +406,7 @@ mod tests {
         fn batch_equals_scalar(phi in proptest::collection::vec(0.0f64..0.7, 1..64)) {
             for m in [model(), FrictionalCollisional::garzo_dufty_initial()] {
                 let mut out = vec![KineticCoefficients::default(); phi.len()];
-                m.coefficients_batch(&phi, &mut out);
+                m.coefficients_batch(&phi, None, &mut out);
                 for (o, p) in out.iter().zip(&phi) {
                     prop_assert_eq!(*o, m.coefficients(*p, None));
                 }

@@ -1,7 +1,7 @@
 //! Di Felice hindrance with a Reynolds-dependent exponent.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, Hindrance};
+use saltus_core::{register_model, Describe, DragReynolds, Hindrance};
 use serde::{Deserialize, Serialize};
 
 /// Which Reynolds number the Di Felice exponent and the single-particle C_D use.
@@ -58,10 +58,7 @@ impl DiFelice {
     /// Reynolds number of the convention from the interstitial `re_p`.
     #[inline]
     fn convention_re(&self, phi: f64, re_p: f64) -> f64 {
-        match self.reynolds {
-            ReynoldsConvention::Superficial => (1.0 - phi) * re_p,
-            ReynoldsConvention::Interstitial => re_p,
-        }
+        self.reynolds_convention().of(phi, re_p)
     }
 }
 
@@ -84,9 +81,14 @@ impl Hindrance for DiFelice {
         let n = Self::exponent(self.convention_re(phi, re_p));
         (1.0 - phi).powf(2.0 - n)
     }
-    #[inline]
-    fn drag_reynolds(&self, phi: f64, re_p: f64) -> f64 {
-        self.convention_re(phi, re_p)
+    fn reynolds_convention(&self) -> DragReynolds {
+        match self.reynolds {
+            ReynoldsConvention::Superficial => DragReynolds::Superficial,
+            ReynoldsConvention::Interstitial => DragReynolds::Interstitial,
+        }
+    }
+    fn depends_on_reynolds(&self) -> bool {
+        true
     }
 }
 

@@ -1,7 +1,7 @@
 //! No hindrance.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, Hindrance};
+use saltus_core::{register_model, Describe, DragReynolds, Hindrance};
 use serde::{Deserialize, Serialize};
 
 /// No hindrance: the drag on a particle in a suspension is the single-particle drag
@@ -34,6 +34,12 @@ impl Hindrance for NoHindrance {
     #[inline]
     fn factor(&self, _phi: f64, _re_p: f64) -> f64 {
         1.0
+    }
+    fn reynolds_convention(&self) -> DragReynolds {
+        DragReynolds::Interstitial
+    }
+    fn depends_on_reynolds(&self) -> bool {
+        false
     }
 }
 

@@ -1,7 +1,7 @@
 //! Richardson-Zaki hindrance.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, Hindrance, Param, ParamRange};
+use saltus_core::{register_model, Describe, DragReynolds, Hindrance, Param, ParamRange};
 use serde::{Deserialize, Serialize};
 
 /// Richardson & Zaki (1954) hindrance of the drag force
@@ -57,6 +57,12 @@ impl Hindrance for RichardsonZaki {
     #[inline]
     fn factor(&self, phi: f64, _re_p: f64) -> f64 {
         (1.0 - phi).powf(-self.exponent)
+    }
+    fn reynolds_convention(&self) -> DragReynolds {
+        DragReynolds::Interstitial
+    }
+    fn depends_on_reynolds(&self) -> bool {
+        false
     }
 }
 

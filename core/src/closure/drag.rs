@@ -21,6 +21,13 @@ pub trait DragLaw: Describe + Send + Sync + std::fmt::Debug {
     /// dissipation of Chassagne 2023 eq 3.13.
     fn cd_inf(&self) -> f64;
 
+    /// C_D Re_p over a slice (see [`DragLaw::cd_re`]); `out.len()` must equal
+    /// `re_p.len()`. The Eulerian solver's drag kernel calls it once per column.
+    fn cd_re_batch(&self, re_p: &[f64], out: &mut [f64]) {
+        for (o, &r) in out.iter_mut().zip(re_p) {
+            *o = self.cd_re(r);
+        }
+    }
     /// C_D over a slice; `out.len()` must equal `re_p.len()`.
     fn cd_batch(&self, re_p: &[f64], out: &mut [f64]) {
         for (o, &r) in out.iter_mut().zip(re_p) {

@@ -109,6 +109,25 @@ pub trait LocalRheology: Send + Sync {
             *p = self.packing(xi);
         }
     }
+    /// Control numbers of a slice of states. The Eulerian solver calls it once per column
+    /// evaluation (the face states of the shear stress), then [`LocalRheology::eval_batch`].
+    fn control_number_batch(&self, s: &[LocalState], out: &mut [f64]) {
+        for (o, st) in out.iter_mut().zip(s) {
+            *o = self.control_number(st);
+        }
+    }
+    /// [`LocalRheology::control_of_packing`] over a slice.
+    fn control_of_packing_batch(&self, phi: &[f64], out: &mut [f64]) {
+        for (o, &p) in out.iter_mut().zip(phi) {
+            *o = self.control_of_packing(p);
+        }
+    }
+    /// [`LocalRheology::pressure_at`] over slices of states and control numbers.
+    fn pressure_at_batch(&self, s: &[LocalState], x: &[f64], out: &mut [f64]) {
+        for ((o, st), &xi) in out.iter_mut().zip(s).zip(x) {
+            *o = self.pressure_at(st, xi);
+        }
+    }
 }
 
 /// Johnson & Jackson (1987) enduring-contact (elastic) pressure, Chassagne et al. 2023
@@ -189,6 +208,8 @@ pub struct SaltationInput {
 pub trait KineticTheory: Send + Sync {
     /// Maximum packing fraction phi_max at which g0 and the elastic pressure diverge.
     fn phi_max(&self) -> f64;
+    /// The Johnson-Jackson elastic law of eq 2.14 (the solver evaluates it inline).
+    fn elastic_law(&self) -> JohnsonJacksonElastic;
     /// Johnson-Jackson elastic pressure p_el(phi) (Pa), eq 2.14.
     fn elastic_pressure(&self, phi: f64) -> f64;
     /// Derivative d p_el / d phi (Pa), for implicit treatment of the elastic pressure.
@@ -204,10 +225,28 @@ pub trait KineticTheory: Send + Sync {
     /// Whether the saltation correction is on.
     fn saltation_enabled(&self) -> bool;
 
-    /// Coefficients over a slice of volume fractions, saltation off.
-    fn coefficients_batch(&self, phi: &[f64], out: &mut [KineticCoefficients]) {
-        for (o, &p) in out.iter_mut().zip(phi) {
-            *o = self.coefficients(p, None);
+    /// [`KineticTheory::drag_dissipation_factor`] over a slice of C_D. The Eulerian solver
+    /// calls it once per temperature step.
+    fn drag_dissipation_batch(&self, cd_inf: f64, cd: &[f64], out: &mut [f64]) {
+        for (o, &c) in out.iter_mut().zip(cd) {
+            *o = self.drag_dissipation_factor(cd_inf, c);
+        }
+    }
+
+    /// Coefficients over a slice of volume fractions, with the saltation input of each
+    /// point (`None`: saltation off). The Eulerian solver calls it once per column.
+    fn coefficients_batch(&self, phi: &[f64], salt: Option<&[SaltationInput]>, out: &mut [KineticCoefficients]) {
+        match salt {
+            Some(salt) => {
+                for ((o, &p), s) in out.iter_mut().zip(phi).zip(salt) {
+                    *o = self.coefficients(p, Some(s));
+                }
+            }
+            None => {
+                for (o, &p) in out.iter_mut().zip(phi) {
+                    *o = self.coefficients(p, None);
+                }
+            }
         }
     }
 }

@@ -1,7 +1,12 @@
-//! Shared 1D column fluid solver.
+//! Shared 1D column fluid discretisation.
 //!
-//! Both the Eulerian two-fluid and the Lagrangian DEM solvers advance the streamwise fluid
-//! velocity u_f(z, t) of a 1D vertical column with [`FluidColumn`] every fluid step.
+//! The discrete operator ([`operator::ColumnOperator`]: grid metrics, wall stencils, face
+//! conductances, face values, shear rate, wall and lid rows) and the turbulence of the
+//! column ([`turbulence`]: the friction velocity, the eddy viscosity with its one
+//! relaxation policy, the k-omega inputs and step) exist once. The Lagrangian DEM solver
+//! advances the streamwise fluid velocity u_f(z, t) with [`FluidColumn`] (operator +
+//! turbulence, a scalar tridiagonal system); the Eulerian two-fluid solver assembles the
+//! same operator into each phase of its 2x2 block system through [`Band`].
 //!
 //! # Equation
 //!
@@ -52,7 +57,13 @@
 //!   interpolation for uniform k); top free surface: zero-slope quadratic through the
 //!   last two centres. The shear rate handed to the turbulence closure is the
 //!   difference over each cell of the linearly interpolated face values (central
-//!   difference on a uniform grid), independent of the diffusivity.
+//!   difference on a uniform grid), independent of the diffusivity; under a zero-stress
+//!   top its top value is the last centre's
+//!   ([`operator::ColumnOperator::stress_free_shear_top`]).
+//! * Eddy viscosity: evaluated from the velocity at the start of each step and relaxed,
+//!   nu_t <- w nu_t(u) + (1 - w) nu_t with w = [`ColumnParams::relaxation`] (the first
+//!   evaluation unrelaxed), the one policy of both solvers
+//!   ([`turbulence::EddyViscosity`]).
 //!
 //! # Boundary conditions
 //!
@@ -62,7 +73,7 @@
 //!
 //! # Time stepping and steady state
 //!
-//! Backward Euler, diffusion and drag fully implicit, nu_t lagged (Picard), solved by
+//! Backward Euler, diffusion and drag fully implicit, nu_t lagged and relaxed (Picard), solved by
 //! the tridiagonal double sweep (Thomas) as in Maurin et al. 2015 (text after eq 19):
 //! [`FluidColumn::step`] (with a two-equation closure, k and omega then take one
 //! backward-Euler step with the shear of the new velocity). [`FluidColumn::solve_steady`]
@@ -73,13 +84,18 @@
 //! the field) and a non-finite u_f after a solve is an error naming the time, the cell and
 //! the field, never a panic.
 
+mod fluid;
 mod grid;
 pub mod k_omega;
-mod momentum;
+pub mod operator;
+mod params;
 pub mod tridiagonal;
+pub mod turbulence;
 
+pub use fluid::FluidColumn;
 pub use grid::Grid;
-pub use momentum::{Closures, ColumnParams, Coupling, FluidColumn, SteadyReport, TopBoundary};
+pub use operator::{Band, ColumnOperator};
+pub use params::{Closures, ColumnParams, Coupling, SteadyReport, TopBoundary};
 pub use tridiagonal::Tridiagonal;
 
 /// Errors of the column solver.

@@ -43,7 +43,9 @@
 //!
 //! ## Discretisation
 //!
-//! Finite volumes on a uniform grid, backward Euler with coefficients lagged one step:
+//! Finite volumes on the column grid (uniform or stretched from the wall) with the shared
+//! operator of [`crate::column::operator`] (face conductances, wall stencils, shear rates,
+//! wall and lid rows), backward Euler with coefficients lagged one step:
 //!
 //! * momentum: one 2x2 block-tridiagonal solve per step couples the two phases through
 //!   the drag implicitly (no splitting error however stiff beta is); the Coulomb part of
@@ -68,13 +70,38 @@
 //!
 //! A scene pays only for what its closures need: no temperature equation without kinetic
 //! theory, no drift diffusivity without an active fluctuation closure.
+//!
+//! ## Layout
+//!
+//! The solver is split along its equations: `solver` (construction, getters), `state`
+//! (the solution and the copy a rejection restores), `coefficients` (everything recomputed
+//! from the state, with the scratch space; one batch call per closure family per
+//! evaluation), `stress` (particle pressure and shear stress), `momentum`, `temperature`,
+//! `volume_fraction`, `k_omega` (one implicit step of each equation), `stepper` (the
+//! [`crate::run::Stepper`]: one accepted step per call) and `report` (profiles and
+//! summary, read without advancing anything). The coefficients always belong to the
+//! current state: the stepper evaluates them after every accepted step.
 
 mod block;
+mod coefficients;
 mod config;
+mod k_omega;
+mod momentum;
+mod report;
 mod rheology;
 mod solver;
+mod state;
+mod stepper;
+mod stress;
+mod temperature;
+mod volume_fraction;
 
 pub use block::BlockTridiagonal;
 pub use config::{Config, Domain, Settings, Top};
+pub use report::Derived;
 pub use rheology::{Elastic, Rheology};
-pub use solver::{Breakdown, Derived, Ending, Eulerian, Progress, PHI_FLOOR};
+pub use solver::{Eulerian, PHI_FLOOR};
+
+// the Lagrangian solver's observer still takes the legacy progress record until it
+// implements `run::Stepper`
+pub(crate) use crate::Progress;

@@ -13,7 +13,12 @@ pub type Elastic = saltus_core::JohnsonJacksonElastic;
 #[derive(Clone, Copy)]
 pub enum Rheology<'a> {
     /// Johnson-Jackson elastic + kinetic theory: granular temperature equation on.
-    Kinetic(&'a dyn KineticTheory),
+    Kinetic {
+        /// the closure
+        model: &'a dyn KineticTheory,
+        /// its enduring-contact pressure, evaluated inline
+        elastic: Elastic,
+    },
     /// mu(I), mu(K): dilatancy pressure from the packing law, plus an elastic pressure.
     Local {
         /// the closure
@@ -40,7 +45,7 @@ impl Rheology<'_> {
     /// Volume fraction at which the particle pressure diverges.
     pub fn phi_max(&self) -> f64 {
         match self {
-            Rheology::Kinetic(k) => k.phi_max(),
+            Rheology::Kinetic { model, .. } => model.phi_max(),
             Rheology::Local { elastic, .. } => elastic.phi_max,
         }
     }

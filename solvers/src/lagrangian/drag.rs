@@ -14,9 +14,10 @@
 //! of the body force ([`super::setup::body_acceleration`]).
 //!
 //! The closures are called once per chunk of particles through their batch methods
-//! (C_D over Re*, f over (phi, Re_p)); the hindrance's Reynolds convention is taken per
-//! cell as Re* = c(phi) Re_p with c = `drag_reynolds(phi, 1)`, checked linear at start-up.
-//! A hindrance found independent of Re_p at start-up (Richardson-Zaki) is evaluated per
+//! (C_D over Re*, f over (phi, Re_p)); Re* = c(phi) Re_p with c the ratio of the
+//! hindrance's declared convention ([`saltus_core::Hindrance::reynolds_convention`], the
+//! same [`crate::inputs::DragKernel`] convention as the Eulerian solver's), stored per
+//! cell. A hindrance that declares no Re_p dependence (Richardson-Zaki) is evaluated per
 //! cell at each fluid update instead of per particle and step (the particle's phi is its
 //! cell's anyway).
 //!
@@ -52,7 +53,7 @@ pub struct FluidField {
     /// transports them (k-omega; the eddy interaction model draws from them); empty
     /// otherwise
     pub k_omega: [Vec<f64>; 2],
-    /// Re* / Re_p per cell (hindrance convention)
+    /// Re* / Re_p per cell (the hindrance's declared convention)
     pub re_ratio: Vec<f64>,
     /// hindrance factor per cell, when the hindrance does not depend on Re_p (then the
     /// particles read it instead of evaluating the closure); empty otherwise

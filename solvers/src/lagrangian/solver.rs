@@ -114,20 +114,8 @@ impl<'a> Lagrangian<'a> {
                 turbulence.name()
             )));
         }
-        for phi in [0.0, 0.3, 0.6] {
-            let (a, b) = (hindrance.drag_reynolds(phi, 1.0), hindrance.drag_reynolds(phi, 2.0));
-            if !(a.is_finite() && a > 0.0 && (b - 2.0 * a).abs() <= 1e-12 * b.abs()) {
-                return Err(Error::Invalid(format!(
-                    "{file}: closures.hindrance `{}`: its drag Reynolds number is not proportional to Re_p, which the DEM drag assumes",
-                    hindrance.name()
-                )));
-            }
-        }
-        // a hindrance that does not depend on Re_p is tabulated per cell
-        let re_free = [0.05, 0.3, 0.55].iter().all(|&phi| {
-            let f0 = hindrance.factor(phi, 1e-3);
-            [1.0, 1e3, 1e5].iter().all(|&re| hindrance.factor(phi, re) == f0)
-        });
+        // the hindrance declares its convention and whether it sees Re_p: nothing probed
+        let re_free = !hindrance.depends_on_reynolds();
         let s = &cfg.settings;
         let d = scene.particles.diameter;
         let rho_p = scene.particles.density;
@@ -300,7 +288,7 @@ impl<'a> Lagrangian<'a> {
         self.sums.coupling(self.cell_volume, u_f, &mut self.phi, &mut self.u_p, &mut self.beta);
         for (c, &phi) in self.phi.iter().enumerate() {
             self.field.phi[c] = phi.min(0.99);
-            self.field.re_ratio[c] = self.hindrance.drag_reynolds(phi.min(0.99), 1.0);
+            self.field.re_ratio[c] = self.hindrance.reynolds_convention().ratio(phi.min(0.99));
         }
         if self.re_free_hindrance {
             let n = self.field.phi.len();

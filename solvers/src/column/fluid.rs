@@ -1,124 +1,13 @@
 //! Streamwise fluid momentum of the column: [`FluidColumn`].
 
-use saltus_core::closure::turbulence::{TwoEquation, TwoEquationInput};
-use saltus_core::{ColumnView, EffectiveViscosity, Turbulence};
+use saltus_core::closure::turbulence::TwoEquation;
+use saltus_core::{ColumnView, Turbulence};
 
-use super::k_omega::{ColumnGeometry, KOmegaColumn};
+use super::operator::ColumnOperator;
+use super::params::{Closures, ColumnParams, Coupling, SteadyReport, TopBoundary};
 use super::tridiagonal::Tridiagonal;
+use super::turbulence::{friction_velocity, EddyViscosity, KOmegaPhysics, KOmegaRun};
 use super::{ColumnError, Grid};
-
-/// Boundary condition at the top of the column (z = H).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum TopBoundary {
-    /// free surface: zero shear stress, du/dz = 0
-    FreeSurface,
-    /// moving lid (Couette): u = `velocity` (m/s) at z = H
-    Lid {
-        /// lid velocity (m/s)
-        velocity: f64,
-    },
-    /// symmetry plane (channel centreline): zero shear stress; for this equation the same
-    /// discrete condition as [`TopBoundary::FreeSurface`], kept distinct for clarity
-    Symmetry,
-}
-
-/// Physical and numerical parameters of a [`FluidColumn`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ColumnParams {
-    /// fluid density rho_f (kg/m^3)
-    pub density: f64,
-    /// clear-fluid kinematic viscosity nu_f (m^2/s)
-    pub viscosity: f64,
-    /// particle diameter d (m), handed to the turbulence closure (0 for clear water)
-    pub diameter: f64,
-    /// streamwise gravity g sin(alpha) (m/s^2)
-    pub gravity_x: f64,
-    /// imposed streamwise pressure gradient G_x = -dp/dx (Pa/m)
-    pub pressure_gradient: f64,
-    /// top boundary condition
-    pub top: TopBoundary,
-    /// particle density rho_p (kg/m^3), for the two-phase terms of a two-equation
-    /// closure (buoyancy, drag damping; Cheng et al. eqs 21, 25)
-    pub particle_density: f64,
-    /// wall-normal gravity g cos(alpha) (m/s^2), for the buoyancy term of a two-equation
-    /// closure (Cheng et al. eq 21)
-    pub gravity_normal: f64,
-    /// friction velocity of the forcing at the bed surface (m/s) for the rough-wall and
-    /// in-bed omega of a two-equation closure (Cheng et al. eq 34); `None`: that of the
-    /// driving over the whole column, sqrt((g sin(alpha) + G_x / rho_f) H)
-    pub friction_velocity: Option<f64>,
-    /// under-relaxation omega in (0, 1] of nu_t in [`FluidColumn::solve_steady`]:
-    /// nu_t <- omega nu_t(u) + (1 - omega) nu_t. The default 0.5 turns the Picard map of a
-    /// fully turbulent mixing-length layer (nu_t <- C / nu_t, which oscillates with
-    /// omega = 1) into a Newton (Babylonian) iteration.
-    pub relaxation: f64,
-}
-
-impl Default for ColumnParams {
-    /// Water (rho_f = 1000, nu_f = 1e-6), no particle, no driving, free surface, omega = 0.5.
-    fn default() -> Self {
-        Self {
-            density: 1000.0,
-            viscosity: 1.0e-6,
-            diameter: 0.0,
-            gravity_x: 0.0,
-            pressure_gradient: 0.0,
-            top: TopBoundary::FreeSurface,
-            particle_density: 2650.0,
-            gravity_normal: 9.81,
-            friction_velocity: None,
-            relaxation: 0.5,
-        }
-    }
-}
-
-/// The closures the column uses.
-#[derive(Clone, Copy, Debug)]
-pub struct Closures<'a> {
-    /// effective viscosity nu_eff = nu_f ratio(phi)
-    pub viscosity: &'a dyn EffectiveViscosity,
-    /// eddy viscosity nu_t: an algebraic closure, or a two-equation one (k-omega) whose k
-    /// and omega the column then allocates (first step) and advances
-    pub turbulence: &'a dyn Turbulence,
-}
-
-/// Per-cell coupling with the particle phase, supplied by the caller every step (all
-/// zero for clear water).
-#[derive(Clone, Copy, Debug)]
-pub struct Coupling<'a> {
-    /// solid volume fraction phi per cell, in [0, 1)
-    pub phi: &'a [f64],
-    /// implicit drag coefficient beta per cell (kg m^-3 s^-1), >= 0: the drag on the fluid
-    /// per unit mixture volume is -beta (u_f - u_p)
-    pub beta: &'a [f64],
-    /// particle velocity u_p per cell (m/s)
-    pub u_p: &'a [f64],
-}
-
-/// Outcome of [`FluidColumn::solve_steady`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SteadyReport {
-    /// linear solves performed
-    pub iterations: usize,
-    /// final relative residual of the steady equation (see [`FluidColumn::residual`])
-    pub residual: f64,
-}
-
-/// Second-order one-sided gradient at a wall from the wall value and the two nearest
-/// cell centres at distances `a < b`: du/ds(0) = c_w u_w + c_a u(a) + c_b u(b), exact for
-/// quadratics. c_a > 0 and c_b, c_w < 0, which keeps the operator an M-matrix.
-#[derive(Clone, Copy, Debug, Default)]
-struct WallStencil {
-    cw: f64,
-    ca: f64,
-    cb: f64,
-}
-
-impl WallStencil {
-    fn new(a: f64, b: f64) -> Self {
-        Self { cw: -(a + b) / (a * b), ca: b / (a * (b - a)), cb: -a / (b * (b - a)) }
-    }
-}
 
 /// 1D column solver of the streamwise fluid momentum; see the module documentation of
 /// [`crate::column`] for the equation, the discretisation and the boundary conditions.
@@ -127,12 +16,10 @@ impl WallStencil {
 /// [`FluidColumn::solve_steady`] do not allocate.
 #[derive(Clone, Debug)]
 pub struct FluidColumn {
-    grid: Grid,
+    op: ColumnOperator,
     params: ColumnParams,
     time: f64,
     residual: f64,
-    bottom: WallStencil,
-    top: WallStencil,
     /// fluid velocity per cell
     u: Vec<f64>,
     /// fluid velocity per face
@@ -140,9 +27,7 @@ pub struct FluidColumn {
     /// du/dz per cell (given to the turbulence closure)
     dudz: Vec<f64>,
     /// eddy viscosity per cell (the one of the last solve, or of the converged state)
-    nu_t: Vec<f64>,
-    /// eddy viscosity work array
-    nu_t_work: Vec<f64>,
+    eddy: EddyViscosity,
     /// nu_eff / nu_f per cell
     ratio: Vec<f64>,
     /// eps (nu_eff + nu_t) per cell (m^2/s)
@@ -160,16 +45,9 @@ pub struct FluidColumn {
     source: Vec<f64>,
     tri: Tridiagonal,
     /// k and omega of a two-equation closure, allocated on the first step with one
-    kw: Option<TwoEquationState>,
-}
-
-/// k, omega and the per-cell inputs of their terms.
-#[derive(Clone, Debug)]
-struct TwoEquationState {
-    col: KOmegaColumn,
-    /// beta of Cheng et al. eq 23 (drag per unit particle volume per unit slip)
-    drag: Vec<f64>,
-    dphidz: Vec<f64>,
+    kw: Option<KOmegaRun>,
+    /// no step taken yet: the first nu_t is taken unrelaxed
+    fresh: bool,
 }
 
 /// Pseudo-time step of k and omega in [`FluidColumn::solve_steady`] in units of the
@@ -182,74 +60,16 @@ const PSEUDO_DT_CAP: f64 = 10.0;
 impl FluidColumn {
     /// A column at rest (u = 0, t = 0, clear water) on `grid`.
     pub fn new(grid: Grid, params: ColumnParams) -> Result<Self, ColumnError> {
-        let p = &params;
-        let positive = |name, v: f64| {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(ColumnError::InvalidParameter { name, value: v, reason: "must be finite and > 0" })
-            }
-        };
-        positive("fluid density", p.density)?;
-        positive("fluid viscosity", p.viscosity)?;
-        if !(p.diameter.is_finite() && p.diameter >= 0.0) {
-            return Err(ColumnError::InvalidParameter {
-                name: "diameter",
-                value: p.diameter,
-                reason: "must be finite and >= 0",
-            });
-        }
-        positive("particle density", p.particle_density)?;
-        if let Some(u) = p.friction_velocity {
-            if !(u.is_finite() && u >= 0.0) {
-                return Err(ColumnError::InvalidParameter {
-                    name: "friction_velocity",
-                    value: u,
-                    reason: "must be finite and >= 0",
-                });
-            }
-        }
-        for (name, v) in [
-            ("gravity_x", p.gravity_x),
-            ("pressure_gradient", p.pressure_gradient),
-            ("gravity_normal", p.gravity_normal),
-        ] {
-            if !v.is_finite() {
-                return Err(ColumnError::InvalidParameter { name, value: v, reason: "must be finite" });
-            }
-        }
-        if let TopBoundary::Lid { velocity } = p.top {
-            if !velocity.is_finite() {
-                return Err(ColumnError::InvalidParameter {
-                    name: "lid velocity",
-                    value: velocity,
-                    reason: "must be finite",
-                });
-            }
-        }
-        if !(p.relaxation > 0.0 && p.relaxation <= 1.0) {
-            return Err(ColumnError::InvalidParameter {
-                name: "relaxation",
-                value: p.relaxation,
-                reason: "must be in (0, 1]",
-            });
-        }
+        params.validate()?;
         let n = grid.len();
-        let zc = grid.centres();
-        let h = grid.height();
-        let bottom = WallStencil::new(zc[0], zc[1]);
-        let top = WallStencil::new(h - zc[n - 1], h - zc[n - 2]);
         let mut col = Self {
             params,
             time: 0.0,
             residual: 0.0,
-            bottom,
-            top,
             u: vec![0.0; n],
             u_face: vec![0.0; n + 1],
             dudz: vec![0.0; n],
-            nu_t: vec![0.0; n],
-            nu_t_work: vec![0.0; n],
+            eddy: EddyViscosity::new(n, params.relaxation),
             ratio: vec![1.0; n],
             k: vec![0.0; n],
             cond: vec![0.0; n + 1],
@@ -260,7 +80,8 @@ impl FluidColumn {
             source: vec![0.0; n],
             tri: Tridiagonal::new(n),
             kw: None,
-            grid,
+            fresh: true,
+            op: ColumnOperator::new(grid),
         };
         let s = col.params.density * col.params.gravity_x + col.params.pressure_gradient;
         col.source.fill(s);
@@ -271,7 +92,12 @@ impl FluidColumn {
 
     /// The grid.
     pub fn grid(&self) -> &Grid {
-        &self.grid
+        self.op.grid()
+    }
+
+    /// The discrete operator.
+    pub fn operator(&self) -> &ColumnOperator {
+        &self.op
     }
 
     /// The parameters.
@@ -329,7 +155,7 @@ impl FluidColumn {
     /// after [`FluidColumn::step`], the one of the converged velocity after
     /// [`FluidColumn::solve_steady`].
     pub fn eddy_viscosity(&self) -> &[f64] {
-        &self.nu_t
+        self.eddy.values()
     }
 
     /// Turbulent kinetic energy k (m^2/s^2) and specific dissipation rate omega (1/s) per
@@ -359,15 +185,15 @@ impl FluidColumn {
     /// (length n; extra entries untouched).
     pub fn reynolds_stress(&self, out: &mut [f64]) {
         let rho = self.params.density;
-        for (((o, &nu), &g), &phi) in out.iter_mut().zip(&self.nu_t).zip(&self.dudz).zip(&self.phi) {
+        for (((o, &nu), &g), &phi) in out.iter_mut().zip(self.eddy.values()).zip(&self.dudz).zip(&self.phi) {
             *o = rho * (1.0 - phi) * nu * g;
         }
     }
 
     /// Depth-averaged fluid velocity over the whole column, sum(u dz) / H (m/s).
     pub fn depth_averaged_velocity(&self) -> f64 {
-        let q: f64 = self.u.iter().zip(self.grid.dz()).map(|(u, dz)| u * dz).sum();
-        q / self.grid.height()
+        let q: f64 = self.u.iter().zip(self.op.grid().dz()).map(|(u, dz)| u * dz).sum();
+        q / self.op.grid().height()
     }
 
     /// Driving per unit volume eps (rho_f g sin(alpha) + G_x) per cell (Pa/m), for the
@@ -386,7 +212,8 @@ impl FluidColumn {
     }
 
     /// Advance by `dt` (s) with backward Euler: diffusion and drag implicit, nu_t lagged
-    /// (evaluated once from the velocity at the start of the step). `dt = f64::INFINITY`
+    /// (evaluated once from the velocity at the start of the step and relaxed by
+    /// [`ColumnParams::relaxation`] after the first step). `dt = f64::INFINITY`
     /// solves the steady equation with the lagged nu_t (one Picard iteration); time is
     /// advanced only for finite `dt`.
     pub fn step(&mut self, dt: f64, coupling: &Coupling<'_>, closures: &Closures<'_>) -> Result<(), ColumnError> {
@@ -395,7 +222,9 @@ impl FluidColumn {
         }
         self.load_inputs(coupling, closures)?;
         self.evaluate_turbulence(closures.turbulence)?;
-        std::mem::swap(&mut self.nu_t, &mut self.nu_t_work);
+        // the one relaxation policy of the column (also the Eulerian solver's)
+        self.eddy.relax(self.fresh);
+        self.fresh = false;
         self.update_coefficients();
         let t_new = if dt.is_finite() { self.time + dt } else { self.time };
         self.solve_linear(dt, t_new)?;
@@ -429,12 +258,11 @@ impl FluidColumn {
         if let Some(model) = closures.turbulence.as_two_equation() {
             return self.solve_steady_two_equation(model, closures.turbulence, tol, max_iter);
         }
-        let omega = self.params.relaxation;
         let mut it = 0;
         loop {
             self.evaluate_turbulence(closures.turbulence)?;
-            // nu_t <- nu_t(u), keeping the previous one in the work array
-            std::mem::swap(&mut self.nu_t, &mut self.nu_t_work);
+            // nu_t <- nu_t(u), keeping the previous one
+            self.eddy.take_candidate();
             self.update_coefficients();
             self.update_stresses();
             if self.residual <= tol {
@@ -443,9 +271,7 @@ impl FluidColumn {
             if it == max_iter {
                 return Err(ColumnError::NotConverged { iterations: it, residual: self.residual, tol });
             }
-            for (new, &old) in self.nu_t.iter_mut().zip(&self.nu_t_work) {
-                *new = omega * *new + (1.0 - omega) * old;
-            }
+            self.eddy.relax_from_previous();
             self.update_coefficients();
             self.solve_linear(f64::INFINITY, self.time)?;
             self.update_faces();
@@ -470,7 +296,7 @@ impl FluidColumn {
         let mut it = 0;
         loop {
             self.evaluate_turbulence(turbulence)?;
-            std::mem::swap(&mut self.nu_t, &mut self.nu_t_work);
+            self.eddy.take_candidate();
             self.update_coefficients();
             self.update_stresses();
             let worst = self.residual.max(change);
@@ -486,8 +312,7 @@ impl FluidColumn {
             kw.col.save();
             self.advance_two_equation(model, dt, self.time)?;
             if let Some(kw) = &self.kw {
-                let kmax = kw.col.k.iter().fold(1e-300f64, |a, &b| a.max(b));
-                change = kw.col.k.iter().zip(kw.col.saved_k()).fold(0.0f64, |a, (x, y)| a.max((x - y).abs())) / kmax;
+                change = kw.change();
             }
             dt = (dt * 1.2).min(PSEUDO_DT_CAP * scale);
             it += 1;
@@ -495,16 +320,16 @@ impl FluidColumn {
     }
 
     /// Friction velocity of the forcing at the bed surface (m/s): the given one, else that
-    /// of the driving over the whole column.
+    /// of the driving over the whole column ([`friction_velocity`]).
     fn forcing_friction_velocity(&self) -> f64 {
         let p = &self.params;
-        p.friction_velocity
-            .unwrap_or_else(|| ((p.gravity_x + p.pressure_gradient / p.density).max(0.0) * self.grid.height()).sqrt())
+        let drive = p.gravity_x + p.pressure_gradient / p.density;
+        p.friction_velocity.unwrap_or_else(|| friction_velocity(drive, self.op.grid().height()))
     }
 
     /// H / u* of the forcing, or H^2 / nu without forcing (s).
     fn turbulent_time_scale(&self) -> f64 {
-        let h = self.grid.height();
+        let h = self.op.grid().height();
         let u = self.forcing_friction_velocity();
         if u > 0.0 {
             h / u
@@ -513,44 +338,28 @@ impl FluidColumn {
         }
     }
 
-    /// One backward-Euler step of k and omega ([`KOmegaColumn::advance`]) with the current
+    /// One backward-Euler step of k and omega ([`KOmegaRun::advance`]) with the current
     /// shear rate, volume fraction and drag; `time` names the time of a failure.
     fn advance_two_equation(&mut self, model: &dyn TwoEquation, dt: f64, time: f64) -> Result<(), ColumnError> {
-        let u_star = self.forcing_friction_velocity();
+        let physics = KOmegaPhysics {
+            nu_f: self.params.viscosity,
+            diameter: self.params.diameter,
+            fluid_density: self.params.density,
+            particle_density: self.params.particle_density,
+            gravity_normal: self.params.gravity_normal,
+            friction_velocity: self.forcing_friction_velocity(),
+        };
         let n = self.u.len();
-        let zc = self.grid.centres();
         let Some(kw) = self.kw.as_mut() else { return Ok(()) };
         for i in 0..n {
-            let (l, r) = (i.saturating_sub(1), (i + 1).min(n - 1));
-            kw.dphidz[i] = (self.phi[r] - self.phi[l]) / (zc[r] - zc[l]);
             // beta of eq 23 per unit particle volume: the coupling's beta is per unit
             // mixture volume, phi times it; it only enters multiplied by phi again
             let phi = self.phi[i];
             kw.drag[i] = if phi > 1e-12 { self.beta[i] / phi } else { 0.0 };
         }
-        // wall friction velocity of eq 31 from the resolved wall gradient (nu_t = 0 at the
-        // wall), as the Eulerian solver
-        let wall_gradient = self.bottom.ca * self.u[0] + self.bottom.cb * self.u[1];
-        let wall_u_star = (self.params.viscosity * self.ratio[0] * wall_gradient.abs()).sqrt();
-        let input = TwoEquationInput {
-            col: ColumnView {
-                z: zc,
-                dz: self.grid.dz(),
-                phi: &self.phi,
-                dudz: &self.dudz,
-                diameter: self.params.diameter,
-                nu_f: self.params.viscosity,
-                transported: &[],
-            },
-            drag: &kw.drag,
-            dphidz: &kw.dphidz,
-            fluid_density: self.params.density,
-            particle_density: self.params.particle_density,
-            gravity_normal: self.params.gravity_normal,
-            friction_velocity: u_star,
-        };
-        let geometry = ColumnGeometry { z: zc, dz: self.grid.dz() };
-        kw.col.advance(model, &input, geometry, wall_u_star, dt).map_err(|f| ColumnError::TwoEquation {
+        let result = kw.advance(model, &self.op, &physics, &self.phi, &self.u, &self.dudz, self.ratio[0], dt);
+        let zc = self.op.grid().centres();
+        result.map_err(|f| ColumnError::TwoEquation {
             field: f.field,
             cell: f.cell,
             z: zc[f.cell.min(n - 1)],
@@ -561,11 +370,11 @@ impl FluidColumn {
     }
 
     fn invalid(&self, field: &'static str, cell: usize, value: f64, reason: &'static str) -> ColumnError {
-        ColumnError::InvalidInput { field, cell, z: self.grid.centres()[cell], value, reason }
+        ColumnError::InvalidInput { field, cell, z: self.op.grid().centres()[cell], value, reason }
     }
 
     fn non_finite(&self, field: &'static str, cell: usize, time: f64) -> ColumnError {
-        ColumnError::NonFinite { field, cell, z: self.grid.centres()[cell], time }
+        ColumnError::NonFinite { field, cell, z: self.op.grid().centres()[cell], time }
     }
 
     /// Check and copy the coupling inputs; effective viscosity ratio and driving.
@@ -584,13 +393,8 @@ impl FluidColumn {
                 });
             }
             if self.kw.is_none() {
-                let (k0, w0) =
-                    model.initial_state(self.forcing_friction_velocity(), self.grid.height(), self.params.viscosity);
-                self.kw = Some(TwoEquationState {
-                    col: KOmegaColumn::new(n, k0, w0),
-                    drag: vec![0.0; n],
-                    dphidz: vec![0.0; n],
-                });
+                let (u_star, h) = (self.forcing_friction_velocity(), self.op.grid().height());
+                self.kw = Some(KOmegaRun::new(model, n, u_star, h, self.params.viscosity));
             }
         }
         for (field, s) in [("phi", c.phi), ("beta", c.beta), ("u_p", c.u_p)] {
@@ -629,40 +433,30 @@ impl FluidColumn {
         Ok(())
     }
 
-    /// nu_t from the current shear rate into `nu_t_work`.
+    /// Candidate nu_t from the current shear rate.
     fn evaluate_turbulence(&mut self, turbulence: &dyn Turbulence) -> Result<(), ColumnError> {
         let kw_fields = self.kw.as_ref().map(|kw| kw.col.fields());
         let transported: &[&[f64]] = kw_fields.as_ref().map_or(&[], |f| f.as_slice());
         let col = ColumnView {
-            z: self.grid.centres(),
-            dz: self.grid.dz(),
+            z: self.op.grid().centres(),
+            dz: self.op.grid().dz(),
             phi: &self.phi,
             dudz: &self.dudz,
             diameter: self.params.diameter,
             nu_f: self.params.viscosity,
             transported,
         };
-        turbulence.eddy_viscosity(&col, &mut self.nu_t_work);
-        if let Some(i) = self.nu_t_work.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
-            return Err(self.non_finite("nu_t", i, self.time));
-        }
-        Ok(())
+        let result = self.eddy.evaluate(turbulence, &col);
+        result.map_err(|i| self.non_finite("nu_t", i, self.time))
     }
 
     /// Cell diffusivities and face conductances from `ratio`, `phi` and `nu_t`.
     fn update_coefficients(&mut self) {
         let nu_f = self.params.viscosity;
-        for (((k, &r), &phi), &nt) in self.k.iter_mut().zip(&self.ratio).zip(&self.phi).zip(&self.nu_t) {
+        for (((k, &r), &phi), &nt) in self.k.iter_mut().zip(&self.ratio).zip(&self.phi).zip(self.eddy.values()) {
             *k = (1.0 - phi) * (nu_f * r + nt);
         }
-        let zf = self.grid.faces();
-        let zc = self.grid.centres();
-        let rho = self.params.density;
-        for j in 1..self.u.len() {
-            // series resistance of the two half cells: distance-weighted harmonic mean
-            let resistance = (zf[j] - zc[j - 1]) / self.k[j - 1] + (zc[j] - zf[j]) / self.k[j];
-            self.cond[j] = rho / resistance;
-        }
+        self.op.conductances(self.params.density, &self.k, &mut self.cond);
     }
 
     /// Assemble and solve the backward-Euler system for `dt` (infinite: steady).
@@ -670,7 +464,7 @@ impl FluidColumn {
         let n = self.u.len();
         let rho = self.params.density;
         let inv_dt = if dt.is_finite() { 1.0 / dt } else { 0.0 };
-        let dz = self.grid.dz();
+        let dz = self.op.grid().dz();
         let t = &mut self.tri;
         for (i, &dzi) in dz.iter().enumerate() {
             let tm = (1.0 - self.phi[i]) * rho * dzi * inv_dt;
@@ -680,23 +474,11 @@ impl FluidColumn {
             t.diag[i] = tm + b;
             t.rhs[i] = tm * self.u[i] + self.source[i] * dzi + b * self.u_p[i];
         }
-        for j in 1..n {
-            let c = self.cond[j];
-            t.diag[j - 1] += c;
-            t.upper[j - 1] -= c;
-            t.diag[j] += c;
-            t.lower[j] -= c;
-        }
-        // bottom no-slip wall (u_w = 0): flux rho k_0 (c_a u_0 + c_b u_1)
-        let w = rho * self.k[0];
-        t.diag[0] += w * self.bottom.ca;
-        t.upper[0] += w * self.bottom.cb;
+        self.op.add_diffusion(&self.cond, t);
+        // bottom no-slip wall (u_w = 0): flux rho k_0 du/dz
+        self.op.add_wall(rho * self.k[0], t);
         if let TopBoundary::Lid { velocity } = self.params.top {
-            // flux at the top -rho k_{n-1} (c_w U + c_a u_{n-1} + c_b u_{n-2})
-            let w = rho * self.k[n - 1];
-            t.diag[n - 1] += w * self.top.ca;
-            t.lower[n - 1] += w * self.top.cb;
-            t.rhs[n - 1] -= w * self.top.cw * velocity;
+            self.op.add_lid(rho * self.k[n - 1], velocity, t);
         }
         if let Err(row) = t.solve(&mut self.u) {
             return Err(ColumnError::Singular { row, time });
@@ -715,57 +497,33 @@ impl FluidColumn {
 
     /// Face velocities and shear rate from `u`.
     fn update_faces(&mut self) {
-        let n = self.u.len();
-        let zf = self.grid.faces();
-        let zc = self.grid.centres();
-        let dz = self.grid.dz();
-        let u = &self.u;
-        self.u_face[0] = 0.0;
-        for j in 1..n {
-            // flux continuity k_L (u_f - u_L) / d_L = k_R (u_R - u_f) / d_R
-            let wl = self.k[j - 1] / (zf[j] - zc[j - 1]);
-            let wr = self.k[j] / (zc[j] - zf[j]);
-            self.u_face[j] = (wl * u[j - 1] + wr * u[j]) / (wl + wr);
-        }
-        let (a, b) = (zf[n] - zc[n - 1], zf[n] - zc[n - 2]);
-        self.u_face[n] = match self.params.top {
+        let top = match self.params.top {
             TopBoundary::Lid { velocity } => velocity,
-            TopBoundary::FreeSurface | TopBoundary::Symmetry => {
-                // u = u_top + c (H - z)^2 through the last two centres
-                let c = (u[n - 2] - u[n - 1]) / (b * b - a * a);
-                u[n - 1] - c * a * a
-            }
+            TopBoundary::FreeSurface | TopBoundary::Symmetry => self.op.stress_free_top(&self.u),
         };
-        // shear rate: difference over each cell of the linearly interpolated face values
-        // (central difference (u_{i+1} - u_{i-1}) / (2 dz) on a uniform grid); the
-        // diffusivity does not enter, so nu_t feeds back on itself only through the closure
-        let linear = |j: usize| {
-            let (dl, dr) = (zf[j] - zc[j - 1], zc[j] - zf[j]);
-            (dr * u[j - 1] + dl * u[j]) / (dl + dr)
+        self.op.flux_continuous_faces(&self.k, &self.u, top, &mut self.u_face);
+        // the diffusivity does not enter the shear rate, so nu_t feeds back on itself only
+        // through the closure
+        let shear_top = match self.params.top {
+            TopBoundary::Lid { velocity } => velocity,
+            TopBoundary::FreeSurface | TopBoundary::Symmetry => self.op.stress_free_shear_top(&self.u),
         };
-        let mut below = 0.0;
-        for (i, (g, &dzi)) in self.dudz.iter_mut().zip(dz).enumerate() {
-            let above = if i + 1 < n { linear(i + 1) } else { self.u_face[n] };
-            *g = (above - below) / dzi;
-            below = above;
-        }
+        self.op.shear_rate(&self.u, shear_top, &mut self.dudz);
     }
 
     /// Stresses (the discrete fluxes) and the steady residual from `u` and the
     /// coefficients.
     fn update_stresses(&mut self) {
         let n = self.u.len();
-        let dz = self.grid.dz();
+        let dz = self.op.grid().dz();
         let u = &self.u;
         let rho = self.params.density;
-        self.stress[0] = rho * self.k[0] * (self.bottom.ca * u[0] + self.bottom.cb * u[1]);
+        self.stress[0] = rho * self.k[0] * self.op.wall_gradient(u);
         for j in 1..n {
             self.stress[j] = self.cond[j] * (u[j] - u[j - 1]);
         }
         self.stress[n] = match self.params.top {
-            TopBoundary::Lid { velocity } => {
-                -rho * self.k[n - 1] * (self.top.cw * velocity + self.top.ca * u[n - 1] + self.top.cb * u[n - 2])
-            }
+            TopBoundary::Lid { velocity } => rho * self.k[n - 1] * self.op.lid_gradient(u, velocity),
             TopBoundary::FreeSurface | TopBoundary::Symmetry => 0.0,
         };
         // residual of the steady equation

@@ -1,0 +1,85 @@
+//! Streamwise momentum of both phases (Chassagne et al. 2023 eqs 2.3-2.4): one 2x2
+//! block-tridiagonal backward-Euler solve with the drag implicit, each phase's diffusion
+//! and wall rows assembled by the shared [`crate::column::ColumnOperator`].
+
+use super::block::BlockTridiagonal;
+use super::config::Top;
+use super::{Eulerian, PHI_FLOOR};
+use crate::column::Band;
+use crate::run::Breakdown;
+
+/// One phase (0 fluid, 1 particles) of the block system, as a scalar band: the
+/// off-diagonal blocks are diagonal, so each phase's transport is a tridiagonal band.
+struct Phase<'a> {
+    block: &'a mut BlockTridiagonal,
+    c: usize,
+}
+
+impl Band for Phase<'_> {
+    #[inline]
+    fn add(&mut self, row: usize, lower: f64, diag: f64, upper: f64, rhs: f64) {
+        let c = self.c;
+        self.block.lower[row][c] += lower;
+        self.block.diag[row][c][c] += diag;
+        self.block.upper[row][c] += upper;
+        self.block.rhs[row][c] += rhs;
+    }
+}
+
+impl Eulerian<'_> {
+    /// Backward-Euler step of the coupled streamwise momentum of both phases.
+    pub(super) fn solve_momentum(&mut self, dt: f64) -> Result<(), Breakdown> {
+        let n = self.len();
+        let c = self.c;
+        let inv_dt = 1.0 / dt;
+        let dz = self.op.grid().dz();
+        let (s, co) = (&self.s, &self.co);
+        let bl = &mut self.sc.block;
+        for i in 0..n {
+            let phi = s.phi[i].max(0.0);
+            let eps = 1.0 - phi;
+            let dz = dz[i];
+            let phim = phi.max(PHI_FLOOR);
+            // drag linearised about the old slip: beta_t (u_f - u_p) + (beta - beta_t) slip_old
+            let tangent = co.drag_tangent[i];
+            let bf = co.beta[i] * dz;
+            let bp = phim * eps * co.k_drag[i] * dz;
+            let slip = s.uf[i] - s.up[i];
+            let mf = eps * c.rho_f * dz * inv_dt;
+            let mp = phim * c.rho_p * dz * inv_dt;
+            bl.diag[i] = [[mf + tangent * bf, -tangent * bf], [-tangent * bp, mp + tangent * bp]];
+            bl.lower[i] = [0.0; 2];
+            bl.upper[i] = [0.0; 2];
+            bl.rhs[i] = [
+                mf * s.uf[i] + eps * (c.rho_f * c.gx + c.grad) * dz + (tangent - 1.0) * bf * slip,
+                mp * s.up[i] + phim * (c.rho_p * c.gx + c.grad) * dz + co.sigma_face[i + 1]
+                    - co.sigma_face[i]
+                    - (tangent - 1.0) * bp * slip,
+            ];
+        }
+        self.op.add_diffusion(&co.fluid_cond, &mut Phase { block: bl, c: 0 });
+        self.op.add_diffusion(&co.part_cond, &mut Phase { block: bl, c: 1 });
+        // bottom no-slip for both phases: stress = k du/dz at the wall
+        self.op.add_wall(c.rho_f * co.fluid_k[0], &mut Phase { block: bl, c: 0 });
+        self.op.add_wall(co.eta_face[0], &mut Phase { block: bl, c: 1 });
+        if self.cfg.domain.top == Top::Lid {
+            let w = c.rho_f * co.fluid_k[n - 1];
+            self.op.add_lid(w, self.cfg.domain.lid_velocity, &mut Phase { block: bl, c: 0 });
+        }
+        if let Err(row) = bl.solve(&mut self.sc.xb) {
+            return Err(self.breakdown(row, "u_f", f64::NAN, "singular momentum system".into()));
+        }
+        for i in 0..n {
+            let [a, b] = self.sc.xb[i];
+            if !a.is_finite() {
+                return Err(self.breakdown(i, "u_f", a, "not finite after the momentum solve".into()));
+            }
+            if !b.is_finite() {
+                return Err(self.breakdown(i, "u_p", b, "not finite after the momentum solve".into()));
+            }
+            self.s.uf[i] = a;
+            self.s.up[i] = b;
+        }
+        Ok(())
+    }
+}

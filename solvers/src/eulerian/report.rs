@@ -1,0 +1,140 @@
+//! Profiles, summary and paragraph of an Eulerian run, read from the state and the
+//! coefficients the stepper keeps current: nothing here advances or evaluates anything.
+//!
+//! Every number written is finite. `phi` is written clamped at 0 (the phi step accepts
+//! round-off negatives down to -1e-9, which are not volume fractions). The control number
+//! (`inertial_number` of kinetic theory and mu(I), `control_number` of mu(K)) is
+//! undefined where the grains carry no pressure (I = d gamma_dot / sqrt(p / rho_p) is
+//! infinite at p = 0, a sheared cell without grains in contact or collision); such cells
+//! are written as 0, which therefore means "no granular pressure", and the profile is to be
+//! read only where `p_p` > 0.
+
+use super::rheology::Rheology;
+use super::Eulerian;
+use crate::output::{self, Profiles, Summary};
+use crate::run::Ending;
+use crate::RunReport;
+
+/// Derived cell profiles, see [`Eulerian::derived`].
+#[derive(Clone, Debug, Default)]
+pub struct Derived {
+    /// particle shear stress (Pa)
+    pub tau_p: Vec<f64>,
+    /// fluid shear stress, viscous + turbulent (Pa)
+    pub tau_f: Vec<f64>,
+    /// particle pressure (Pa)
+    pub p_p: Vec<f64>,
+    /// particle wall-normal velocity (m/s)
+    pub w_p: Vec<f64>,
+    /// inertial number I (kinetic and mu(I)) or K (mu(K)); 0 where the particle pressure
+    /// vanishes and the number is undefined (see the module documentation)
+    pub control: Vec<f64>,
+}
+
+impl Eulerian<'_> {
+    /// Profiles of derived fields at the current state, cell-centred: particle shear stress,
+    /// fluid shear stress (viscous + turbulent), particle pressure, particle wall-normal
+    /// velocity, the control number of the granular closure.
+    pub fn derived(&self) -> Derived {
+        let n = self.len();
+        let (s, co, c) = (&self.s, &self.co, self.c);
+        let nu_t = s.eddy.values();
+        let mut out = Derived::default();
+        for (i, &nt) in nu_t.iter().enumerate().take(n) {
+            let eps = 1.0 - s.phi[i].max(0.0);
+            out.tau_p.push(0.5 * (co.tau_p[i] + co.tau_p[i + 1]));
+            out.tau_f.push(c.rho_f * eps * (c.nu_f * co.visc_ratio[i] + nt) * co.gamma_f[i]);
+            let p = co.pres[i].p + co.overburden[i];
+            out.p_p.push(p);
+            let f = 0.5 * (s.flux[i] + s.flux[i + 1]);
+            out.w_p.push(if s.phi[i] > 1e-6 { f / s.phi[i] } else { 0.0 });
+            let x = match self.m.rheology {
+                Rheology::Local { model, .. } => model.control_number(&self.local_state(co.gamma_p[i], p)),
+                Rheology::Kinetic { .. } => self.local_state(co.gamma_p[i], co.pres[i].p).inertial_number(),
+            };
+            out.control.push(if x.is_finite() { x } else { 0.0 });
+        }
+        out
+    }
+
+    /// Profiles, summary and paragraph of the run as it is now, ended by `ending` after
+    /// `wall` seconds.
+    pub(super) fn run_report(&self, ending: &Ending, wall: f64) -> RunReport {
+        let scene = self.scene;
+        let derived = self.derived();
+        let phi: Vec<f64> = self.phi().iter().map(|p| p.max(0.0)).collect();
+        let mut p = Profiles::default();
+        p.push("z", self.z().to_vec());
+        p.push("phi", phi.clone());
+        p.push("u_f", self.u_f().to_vec());
+        p.push("u_p", self.u_p().to_vec());
+        if self.is_kinetic() {
+            p.push("theta_g", self.temperature().to_vec());
+        }
+        p.push("w_p", derived.w_p);
+        p.push("p_p", derived.p_p);
+        p.push("tau_p", derived.tau_p);
+        p.push("tau_f", derived.tau_f.clone());
+        p.push("nu_t", self.eddy_viscosity().to_vec());
+        if let Some((k, omega)) = self.k_omega() {
+            p.push("k", k.to_vec());
+            p.push("omega", omega.to_vec());
+        }
+        let q: Vec<f64> = phi.iter().zip(self.u_p()).map(|(a, b)| a * b).collect();
+        p.push("q_s", q.clone());
+        p.push(if self.is_kinetic() { "inertial_number" } else { "control_number" }, derived.control);
+
+        let qs: f64 = q.iter().zip(self.dz()).map(|(q, h)| q * h).sum();
+        let tau_max = derived.tau_f.iter().fold(0.0f64, |a, t| a.max(t.abs()));
+        let scales = output::TransportScales::new(
+            scene,
+            scene.particles.density,
+            scene.particles.diameter,
+            self.cfg.domain.water_depth,
+        );
+        let (z1, z99) = output::flux_levels(self.faces(), &q, 0.01, 0.99);
+        let summary = Summary {
+            scene: scene.meta.name.clone(),
+            solver: "eulerian".into(),
+            qs,
+            qs_star: scales.qs_star(qs),
+            shields: scales.shields(tau_max),
+            shields_nominal: scales.shields_nominal,
+            bed_height: z1,
+            transport_layer_thickness: z99 - z1,
+            steady: matches!(ending, Ending::Steady),
+            ending: ending.name().into(),
+            sim_time_s: self.time(),
+            steps: self.steps(),
+            rejected_steps: Some(self.rejected_steps()),
+            wall_time_s: wall,
+            mass_error: Some(self.mass_error()),
+            residual: self.residual(),
+            cells: self.len(),
+            error: ending.breakdown().map(|b| b.to_string()),
+            particles: None,
+            particle_steps_per_s: None,
+            shields_turbulent: None,
+        };
+        // a column without moving grains (clear water) has no transport levels
+        let layers = if z1.is_finite() && summary.transport_layer_thickness.is_finite() {
+            format!("bed surface {z1:.4} m, transport layer {:.4} m", summary.transport_layer_thickness)
+        } else {
+            "no sediment transport".to_string()
+        };
+        let text = format!(
+            "{}: {} after {:.3} s simulated ({} steps, {} rejected) in {:.3} s wall time; qs* = {:.4} (qs = {:.4e} m^2/s), Shields {:.3}, {layers}, mass error {:.1e}",
+            scene.meta.name,
+            ending.name(),
+            summary.sim_time_s,
+            summary.steps,
+            self.rejected_steps(),
+            wall,
+            summary.qs_star,
+            qs,
+            summary.shields,
+            self.mass_error()
+        );
+        RunReport { profiles: p, summary, text }
+    }
+}

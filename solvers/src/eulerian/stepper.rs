@@ -1,0 +1,106 @@
+//! The Eulerian column as a [`Stepper`]: one `step` is one accepted time step, with the
+//! adaptive time step and the rejected attempts inside it.
+//!
+//! The time step grows while phi changes by less than half of `solver.max_phi_change`
+//! and fields by less than 20 % per step; an attempt that makes phi negative or reach the
+//! maximum packing, or produces a non-finite value, is rejected, the state restored, and
+//! retried with 0.3 dt. Below `solver.dt_min` the run ends [`Ending::Unstable`] with the
+//! last rejection's breakdown. After every accepted step the coefficients are evaluated
+//! for the new state, so that the getters and the report read them without advancing
+//! anything, and the next step starts from them.
+
+use super::Eulerian;
+use crate::run::{Breakdown, Ending, Phase, Progress, Stepper};
+use crate::RunReport;
+
+impl Eulerian<'_> {
+    /// One attempt of a step of length `dt` from the current state and coefficients: the
+    /// momentum, then the temperature (kinetic) or the pressure at the new shear rate
+    /// (local), k and omega, and the volume fraction.
+    fn attempt(&mut self, dt: f64) -> Result<(), Breakdown> {
+        self.s.save(&mut self.saved);
+        self.solve_momentum(dt)?;
+        if self.kinetic {
+            self.solve_temperature(dt)?;
+        } else {
+            self.update_local_pressure();
+        }
+        self.solve_two_equation(dt)?;
+        self.solve_phi(dt)
+    }
+
+    /// The run's own ending at the current state, if any.
+    fn ending(&self) -> Option<Ending> {
+        let s = &self.cfg.settings;
+        if self.stepping.calm >= s.steady_steps {
+            Some(Ending::Steady)
+        } else if self.s.time >= s.end_time * (1.0 - 1e-12) {
+            Some(Ending::EndTime)
+        } else if self.s.steps >= s.max_steps {
+            Some(Ending::MaxSteps)
+        } else {
+            None
+        }
+    }
+}
+
+impl Stepper for Eulerian<'_> {
+    fn name(&self) -> &'static str {
+        "eulerian"
+    }
+
+    fn step(&mut self) -> Option<Ending> {
+        if let Some(e) = self.ending() {
+            return Some(e);
+        }
+        let s = &self.cfg.settings;
+        let (dt_max, dt_min, end_time, tol, max_change) =
+            (s.dt_max, s.dt_min, s.end_time, s.steady_tolerance, s.max_phi_change);
+        loop {
+            let dt = self.stepping.dt;
+            let step = dt.min(end_time - self.s.time);
+            match self.attempt(step) {
+                Ok(()) => {
+                    self.s.time += step;
+                    self.s.steps += 1;
+                    let (rate, grow) = self.s.rates(&self.saved, step, self.kinetic, max_change);
+                    self.s.residual = rate;
+                    self.stepping.calm = if rate < tol { self.stepping.calm + 1 } else { 0 };
+                    self.stepping.dt = (dt * grow).min(dt_max);
+                    if let Err(b) = self.evaluate() {
+                        return Some(Ending::Unstable(b));
+                    }
+                    return self.ending();
+                }
+                Err(b) => {
+                    self.s.restore(&self.saved);
+                    self.s.rejected += 1;
+                    self.stepping.dt = dt * 0.3;
+                    if self.stepping.dt < dt_min {
+                        // the coefficients of the restored state, for the report
+                        let _ = self.evaluate();
+                        return Some(Ending::Unstable(b));
+                    }
+                    if let Err(b) = self.evaluate() {
+                        return Some(Ending::Unstable(b));
+                    }
+                }
+            }
+        }
+    }
+
+    fn progress(&self) -> Progress {
+        Progress {
+            phase: Phase::Flow,
+            time: self.s.time,
+            end_time: self.cfg.settings.end_time,
+            steps: self.s.steps as u64,
+            dt: self.stepping.dt,
+            residual: self.s.residual.is_finite().then_some(self.s.residual),
+        }
+    }
+
+    fn report(&self, ending: &Ending, wall: f64) -> RunReport {
+        self.run_report(ending, wall)
+    }
+}

@@ -1,0 +1,61 @@
+//! Granular temperature (Chassagne et al. 2023 eq 2.16 with the flux 2.18, coefficients
+//! 2.19-2.23 and the drag dissipation 2.25 or 3.13), kinetic closures only.
+
+use super::rheology::Rheology;
+use super::{Eulerian, PHI_FLOOR};
+use crate::run::Breakdown;
+
+impl Eulerian<'_> {
+    /// Backward-Euler step of the granular temperature: production from the shear rate of
+    /// the new u_p (the column operator's, exact on stretched grids), conduction,
+    /// collisional and drag dissipation implicit, so T stays >= 0.
+    pub(super) fn solve_temperature(&mut self, dt: f64) -> Result<(), Breakdown> {
+        let Rheology::Kinetic { model: kt, elastic } = self.m.rheology else { return Ok(()) };
+        let n = self.len();
+        let c = self.c;
+        let top = self.op.stress_free_shear_top(&self.s.up);
+        self.op.shear_rate(&self.s.up, top, &mut self.co.gamma_p);
+        let dz = self.op.grid().dz();
+        let h = self.op.spacing();
+        let cd_inf = self.m.drag.cd_inf();
+        let (s, co) = (&self.s, &self.co);
+        for (cd, &r) in self.sc.cd.iter_mut().zip(&co.cd_ratio) {
+            *cd = cd_inf / r.max(1e-300);
+        }
+        kt.drag_dissipation_batch(cd_inf, &self.sc.cd, &mut self.sc.c_j);
+        let t = &mut self.sc.tri;
+        for (i, &dzi) in dz.iter().enumerate() {
+            let phi = s.phi[i].max(0.0);
+            let m = 1.5 * c.rho_p * phi.max(PHI_FLOOR) * dzi / dt;
+            let st = s.temp[i].max(0.0).sqrt();
+            let sink = c.rho_p / c.d * co.coef[i].f4 * st + self.sc.c_j[i] * co.beta[i];
+            let prod = co.eta_kin[i] * co.gamma_p[i] * co.gamma_p[i];
+            t.lower[i] = 0.0;
+            t.upper[i] = 0.0;
+            t.diag[i] = m + sink * dzi;
+            t.rhs[i] = m * s.temp[i].max(0.0) + prod * dzi;
+        }
+        for (j, &hj) in h.iter().enumerate().take(n).skip(1) {
+            let k = 0.5 * (co.kappa[j - 1] + co.kappa[j]) / hj;
+            t.diag[j - 1] += k;
+            t.upper[j - 1] -= k;
+            t.diag[j] += k;
+            t.lower[j] -= k;
+        }
+        if let Err(row) = t.solve(&mut self.sc.work) {
+            return Err(self.breakdown(row, "theta_g", f64::NAN, "singular temperature system".into()));
+        }
+        for i in 0..n {
+            let v = self.sc.work[i];
+            if !(v.is_finite() && v >= -1e-300) {
+                return Err(self.breakdown(i, "theta_g", v, "granular temperature not finite or negative".into()));
+            }
+            self.s.temp[i] = v.max(0.0);
+        }
+        // the phi step sees the new temperature
+        for i in 0..n {
+            self.co.pres[i] = self.kinetic_pressure(&elastic, i, self.s.temp[i]);
+        }
+        Ok(())
+    }
+}
