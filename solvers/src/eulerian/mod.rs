@@ -34,7 +34,7 @@
 //!   rho_p F1 T and tau_p = mu_s p_el + rho_p d F2 sqrt(T) du_p/dz; local closures
 //!   (mu(I), mu(K)) give tau_p = mu(X) p_p with p_p = p_el(phi) + the dilatancy pressure at
 //!   which packing(X) = phi (X = I or K at the local shear rate). Rate-independent parts are
-//!   regularised, mu p gamma_dot / sqrt(gamma_dot^2 + r^2), `solver.shear_rate_regularisation`.
+//!   regularised, mu p gamma_dot / sqrt(gamma_dot^2 + r^2), `solver.eulerian.shear_rate_regularisation`.
 //! * Granular temperature (kinetic closures only), eq 2.16 with the flux 2.18 and the
 //!   dissipation by drag 2.25 (linear) or 3.13 (quadratic), as the closure says:
 //!
@@ -61,12 +61,12 @@
 //!   so T >= 0 under any time step.
 //!
 //! The time step adapts: it grows while phi changes by less than half of
-//! `solver.max_phi_change` and fields by less than 20 % per step, and a step that would
+//! `solver.eulerian.max_phi_change` and fields by less than 20 % per step, and a step that would
 //! make phi negative or reach the maximum packing, or produce a non-finite value, is
-//! rejected and retried with 0.3 dt. Below `solver.dt_min` the run stops and names the
+//! rejected and retried with 0.3 dt. Below `solver.eulerian.dt_min` the run stops and names the
 //! time, the cell and the field. The run is steady when the largest relative rate of
-//! change of u_f, u_p, phi and T is below `solver.steady_tolerance` (1/s) for
-//! `solver.steady_steps` consecutive steps.
+//! change of u_f, u_p, phi and T is below `solver.eulerian.steady_tolerance` (1/s) for
+//! `solver.eulerian.steady_steps` consecutive steps.
 //!
 //! A scene pays only for what its closures need: no temperature equation without kinetic
 //! theory, no drift diffusivity without an active fluctuation closure.

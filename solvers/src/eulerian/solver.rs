@@ -91,15 +91,8 @@ impl<'a> Eulerian<'a> {
         let rheology = if let Some(k) = granular.as_kinetic() {
             Rheology::Kinetic { model: k, elastic: k.elastic_law() }
         } else if let Some(l) = granular.as_local() {
+            // elastic_phi_rlp < phi_max is checked when the scene is loaded
             let phi_max = l.packing(0.0);
-            if cfg.settings.elastic_phi_rlp >= phi_max {
-                return Err(Error::OutOfRange {
-                    file: scene.path.clone(),
-                    key: "solver.elastic_phi_rlp".into(),
-                    value: cfg.settings.elastic_phi_rlp.to_string(),
-                    allowed: format!("< {phi_max} (the closure's packing at zero shear)"),
-                });
-            }
             Rheology::Local {
                 model: l,
                 elastic: Elastic { p0: cfg.settings.elastic_p0, phi_rlp: cfg.settings.elastic_phi_rlp, phi_max },
@@ -163,16 +156,9 @@ impl<'a> Eulerian<'a> {
         })?;
         let op = ColumnOperator::new(grid);
         let (zf, dz) = (op.grid().faces(), op.grid().dz());
-        let phi_max = m.rheology.phi_max();
-        let bed_phi = d.bed_phi.unwrap_or(if 0.61 < 0.95 * phi_max { 0.61 } else { 0.95 * phi_max });
-        if bed_phi >= phi_max || d.suspension_phi >= phi_max {
-            return Err(Error::OutOfRange {
-                file: scene.path.clone(),
-                key: if bed_phi >= phi_max { "domain.bed_phi" } else { "domain.suspension_phi" }.into(),
-                value: bed_phi.max(d.suspension_phi).to_string(),
-                allowed: format!("< {phi_max} (maximum packing of closures.granular)"),
-            });
-        }
+        // the scene resolved the packing of the bed (domain.bed_phi, below the closure's
+        // maximum packing) when it was loaded
+        let bed_phi = d.bed_phi.unwrap_or(saltus_core::scene::EULERIAN_BED_PHI);
         // initial bed: cells fully inside get bed_phi, the cell cut by the bed top a share,
         // so that the sediment mass is exactly bed_phi * bed_height
         let phi: Vec<f64> = (0..n)

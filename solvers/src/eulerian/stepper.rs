@@ -1,10 +1,10 @@
 //! The Eulerian column as a [`Stepper`]: one `step` is one accepted time step, with the
 //! adaptive time step and the rejected attempts inside it.
 //!
-//! The time step grows while phi changes by less than half of `solver.max_phi_change`
+//! The time step grows while phi changes by less than half of `solver.eulerian.max_phi_change`
 //! and fields by less than 20 % per step; an attempt that makes phi negative or reach the
 //! maximum packing, or produces a non-finite value, is rejected, the state restored, and
-//! retried with 0.3 dt. Below `solver.dt_min` the run ends [`Ending::Unstable`] with the
+//! retried with 0.3 dt. Below `solver.eulerian.dt_min` the run ends [`Ending::Unstable`] with the
 //! last rejection's breakdown. After every accepted step the coefficients are evaluated
 //! for the new state, so that the getters and the report read them without advancing
 //! anything, and the next step starts from them.

@@ -109,7 +109,7 @@ impl Eulerian<'_> {
             } else if v >= phi_max {
                 Some("at or above the maximum packing of the granular closure")
             } else if (v - self.s.phi[i]).abs() > self.cfg.settings.max_phi_change {
-                Some("changed more than solver.max_phi_change in one step")
+                Some("changed more than solver.eulerian.max_phi_change in one step")
             } else {
                 None
             };
