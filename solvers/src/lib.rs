@@ -1,9 +1,10 @@
 //! # saltus-solvers
 //!
-//! Solvers of saltus. The entry point [`run`] dispatches on the scene's `[solver] type`:
-//! `eulerian` ([`eulerian`], the two-fluid column of Chassagne et al. 2023) and
-//! `lagrangian` ([`lagrangian`], soft-sphere DEM coupled to the column, Maurin et al.
-//! 2015). [`mod@column`] is the fluid column shared by both.
+//! Solvers of saltus: `eulerian` ([`eulerian`], the two-fluid column of Chassagne et al.
+//! 2023) and `lagrangian` ([`lagrangian`], soft-sphere DEM coupled to the column, Maurin
+//! et al. 2015). [`mod@column`] is the fluid column shared by both. [`resolve`] turns a
+//! scene into its solver, the only place that dispatches on the solver type; [`run`]
+//! drives it ([`run::drive`]) and writes its outputs.
 
 // Errors carry file, key and message for the user; they are built once per failed run,
 // never in a hot loop, so their size does not matter.
@@ -17,16 +18,47 @@ pub mod run;
 
 use std::fmt;
 use std::path::Path;
-use std::time::Instant;
 
 use saltus_core::scene::Scene;
 use saltus_core::Error;
 
-pub use eulerian::Progress;
 pub use output::{Profiles, Summary};
+pub use run::{Ending, Observer, Progress, Stepper};
 
-/// Solvers the program knows, with whether this build implements them.
-pub const SOLVERS: [(&str, bool); 2] = [("eulerian", true), ("lagrangian", true)];
+/// The solvers of `[solver] type`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Solver {
+    /// the two-fluid column ([`eulerian`])
+    Eulerian,
+    /// the DEM coupled to the column ([`lagrangian`])
+    Lagrangian,
+}
+
+impl Solver {
+    /// Every solver, in the order the help lists them.
+    pub const ALL: [Solver; 2] = [Solver::Eulerian, Solver::Lagrangian];
+
+    /// Name, as in `[solver] type`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Solver::Eulerian => "eulerian",
+            Solver::Lagrangian => "lagrangian",
+        }
+    }
+
+    /// The solver `scene` asks for.
+    pub fn of(scene: &Scene) -> Result<Self, Error> {
+        let file = scene.path.display();
+        let known = || Solver::ALL.map(Solver::name).join(", ");
+        let name = scene.solver.as_ref().and_then(|t| t.get("type")).and_then(|v| v.as_str()).ok_or_else(|| {
+            Error::Invalid(format!("{file}: key `solver.type`: missing; known solvers: {}", known()))
+        })?;
+        Solver::ALL
+            .into_iter()
+            .find(|s| s.name() == name)
+            .ok_or_else(|| Error::Invalid(format!("{file}: key `solver.type`: unknown solver `{name}`; known: {}", known())))
+    }
+}
 
 /// Result of a run: what was written, and a paragraph for the terminal.
 #[derive(Clone, Debug, Default)]
@@ -45,57 +77,52 @@ impl fmt::Display for RunReport {
     }
 }
 
-/// Name of the scene's solver, checked against [`SOLVERS`].
-pub fn solver_name(scene: &Scene) -> Result<&str, Error> {
-    let file = scene.path.display();
-    let solver = scene.solver.as_ref().and_then(|t| t.get("type")).and_then(|v| v.as_str()).ok_or_else(|| {
-        Error::Invalid(format!(
-            "{file}: key `solver.type`: missing; known solvers: {}",
-            SOLVERS.map(|s| s.0).join(", ")
-        ))
-    })?;
-    match SOLVERS.iter().find(|s| s.0 == solver) {
-        None => Err(Error::Invalid(format!(
-            "{file}: key `solver.type`: unknown solver `{solver}`; known: {}",
-            SOLVERS.map(|s| s.0).join(", ")
-        ))),
-        Some((_, false)) => Err(Error::Invalid(format!(
-            "{file}: solver `{solver}` is not implemented in this version yet; use `solver.type = \"eulerian\"`"
-        ))),
-        Some(_) => Ok(solver),
-    }
+/// How a run ended, with the last state: returned on every ending, after the outputs
+/// are written.
+#[derive(Clone, Debug)]
+pub struct RunOutcome {
+    /// why the run stopped
+    pub ending: Ending,
+    /// profiles, summary and paragraph of the last state (as written)
+    pub report: RunReport,
+    /// wall-clock time of the run (s)
+    pub wall: f64,
 }
 
-/// Run `scene`, writing its outputs into `out`. `observer` sees every accepted step and
-/// may stop the run by returning `false`. A run that breaks down writes the last good
-/// state and a summary carrying the error, then returns the error.
-pub fn run(scene: &Scene, out: &Path, observer: &mut dyn FnMut(&Progress) -> bool) -> Result<RunReport, Error> {
-    if solver_name(scene)? == "lagrangian" {
-        return lagrangian::run(scene, out, observer);
-    }
-    let cfg = eulerian::Config::from_scene(scene)?;
-    let mut model = eulerian::Eulerian::new(scene, cfg)?;
-    let start = Instant::now();
-    let ending = model.run(observer);
-    let wall = start.elapsed().as_secs_f64();
-    let report = eulerian_report(scene, &mut model, &ending, wall);
+/// The solver of `scene`, set up and ready to step. The only dispatch on the solver type.
+pub fn resolve(scene: &Scene) -> Result<Box<dyn Stepper + '_>, Error> {
+    Ok(match Solver::of(scene)? {
+        Solver::Eulerian => {
+            let cfg = eulerian::Config::from_scene(scene)?;
+            Box::new(run::interim::EulerianRun::new(scene, eulerian::Eulerian::new(scene, cfg)?))
+        }
+        Solver::Lagrangian => {
+            let cfg = lagrangian::Config::from_scene(scene)?;
+            Box::new(lagrangian::Lagrangian::new(scene, cfg)?)
+        }
+    })
+}
+
+/// Run `scene`, writing its outputs into `out`. `observer` sees every unit of work and
+/// may stop the run ([`Ending::Interrupted`]). Every ending, an unstable one included,
+/// writes the last state and returns it; `Err` only when the scene cannot be set up or
+/// the outputs cannot be written.
+pub fn run(scene: &Scene, out: &Path, observer: &mut dyn Observer) -> Result<RunOutcome, Error> {
+    let mut stepper = resolve(scene)?;
+    // a folder that cannot be made fails before the work, not after it
+    std::fs::create_dir_all(out).map_err(|source| Error::Io { file: out.to_path_buf(), source })?;
+    stepper.set_output_dir(out);
+    let (ending, wall) = run::drive(stepper.as_mut(), observer);
+    let report = stepper.report(&ending, wall);
     output::write_run(out, scene, &report.profiles, &report.summary)?;
-    if let eulerian::Ending::Unstable(b) = ending {
-        return Err(Error::Invalid(format!(
-            "{}: run stopped, unstable at {b}; the state at t = {:.6} s is written to {}",
-            scene.path.display(),
-            model.time(),
-            out.display()
-        )));
-    }
-    Ok(report)
+    Ok(RunOutcome { ending, report, wall })
 }
 
 /// Profiles, summary and paragraph of an Eulerian run.
 pub fn eulerian_report(
     scene: &Scene,
     m: &mut eulerian::Eulerian<'_>,
-    ending: &eulerian::Ending,
+    ending: &Ending,
     wall: f64,
 ) -> RunReport {
     let derived = m.derived();
@@ -129,40 +156,34 @@ pub fn eulerian_report(
         m.config().domain.water_depth,
     );
     let (z1, z99) = output::flux_levels(m.faces(), &q, 0.01, 0.99);
-    let (ending_name, error) = match ending {
-        eulerian::Ending::Steady => ("steady", None),
-        eulerian::Ending::EndTime => ("end_time", None),
-        eulerian::Ending::MaxSteps => ("max_steps", None),
-        eulerian::Ending::Unstable(b) => ("unstable", Some(b.to_string())),
-    };
+    let ending_name = ending.name();
     let summary = Summary {
         scene: scene.meta.name.clone(),
         solver: "eulerian".into(),
-        qs,
-        qs_star: scales.qs_star(qs),
-        shields: scales.shields(tau_max),
+        qs: Some(qs),
+        qs_star: output::finite(scales.qs_star(qs)),
+        shields: output::finite(scales.shields(tau_max)),
         shields_nominal: scales.shields_nominal,
-        bed_height: z1,
-        transport_layer_thickness: z99 - z1,
-        steady: matches!(ending, eulerian::Ending::Steady),
+        bed_height: output::finite(z1),
+        transport_layer_thickness: output::finite(z99 - z1),
+        steady: matches!(ending, Ending::Steady),
         ending: ending_name.into(),
         sim_time_s: m.time(),
         steps: m.steps(),
         rejected_steps: Some(m.rejected_steps()),
         wall_time_s: wall,
         mass_error: Some(m.mass_error()),
-        residual: m.residual(),
+        residual: output::finite(m.residual()),
         cells: m.len(),
-        error,
+        error: ending.error(),
         particles: None,
         particle_steps_per_s: None,
         shields_turbulent: None,
     };
     // a column without moving grains (clear water) has no transport levels
-    let layers = if z1.is_finite() && summary.transport_layer_thickness.is_finite() {
-        format!("bed surface {z1:.4} m, transport layer {:.4} m", summary.transport_layer_thickness)
-    } else {
-        "no sediment transport".to_string()
+    let layers = match (summary.bed_height, summary.transport_layer_thickness) {
+        (Some(z1), Some(t)) => format!("bed surface {z1:.4} m, transport layer {t:.4} m"),
+        _ => "no sediment transport".to_string(),
     };
     let text = format!(
         "{}: {} after {:.3} s simulated ({} steps, {} rejected) in {:.3} s wall time; qs* = {:.4} (qs = {:.4e} m^2/s), Shields {:.3}, {layers}, mass error {:.1e}",
@@ -172,9 +193,9 @@ pub fn eulerian_report(
         summary.steps,
         m.rejected_steps(),
         wall,
-        summary.qs_star,
+        summary.qs_star.unwrap_or(f64::NAN),
         qs,
-        summary.shields,
+        summary.shields.unwrap_or(f64::NAN),
         m.mass_error()
     );
     RunReport { profiles: p, summary, text }
