@@ -50,13 +50,13 @@ impl Solver {
     pub fn of(scene: &Scene) -> Result<Self, Error> {
         let file = scene.path.display();
         let known = || Solver::ALL.map(Solver::name).join(", ");
-        let name = scene.solver.as_ref().and_then(|t| t.get("type")).and_then(|v| v.as_str()).ok_or_else(|| {
-            Error::Invalid(format!("{file}: key `solver.type`: missing; known solvers: {}", known()))
-        })?;
-        Solver::ALL
-            .into_iter()
-            .find(|s| s.name() == name)
-            .ok_or_else(|| Error::Invalid(format!("{file}: key `solver.type`: unknown solver `{name}`; known: {}", known())))
+        let name =
+            scene.solver.as_ref().and_then(|t| t.get("type")).and_then(|v| v.as_str()).ok_or_else(|| {
+                Error::Invalid(format!("{file}: key `solver.type`: missing; known solvers: {}", known()))
+            })?;
+        Solver::ALL.into_iter().find(|s| s.name() == name).ok_or_else(|| {
+            Error::Invalid(format!("{file}: key `solver.type`: unknown solver `{name}`; known: {}", known()))
+        })
     }
 }
 
@@ -119,12 +119,7 @@ pub fn run(scene: &Scene, out: &Path, observer: &mut dyn Observer) -> Result<Run
 }
 
 /// Profiles, summary and paragraph of an Eulerian run.
-pub fn eulerian_report(
-    scene: &Scene,
-    m: &mut eulerian::Eulerian<'_>,
-    ending: &Ending,
-    wall: f64,
-) -> RunReport {
+pub fn eulerian_report(scene: &Scene, m: &mut eulerian::Eulerian<'_>, ending: &Ending, wall: f64) -> RunReport {
     let derived = m.derived();
     let mut p = Profiles::default();
     p.push("z", m.z().to_vec());

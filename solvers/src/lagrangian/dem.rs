@@ -190,8 +190,7 @@ impl Dem {
                     let n = [d[0] / dist, d[1] / dist, d[2] / dist];
                     let arm = [ra * p.wx[a] + rb * p.wx[b], ra * p.wy[a] + rb * p.wy[b], ra * p.wz[a] + rb * p.wz[b]];
                     let spin = cross(arm, n);
-                    let v_rel =
-                        [p.vx[b] - p.vx[a] - spin[0], p.vy[b] - p.vy[a] - spin[1], p.vz[b] - p.vz[a] - spin[2]];
+                    let v_rel = [p.vx[b] - p.vx[a] - spin[0], p.vy[b] - p.vy[a] - spin[1], p.vz[b] - p.vz[a] - spin[2]];
                     let c = ContactInput { n, delta: reach - dist, v_rel, sqrt_m: sqrt_m[q], r_eff: r_eff[q] };
                     let f = contact_force(law, &c, h, dt);
                     *f_out = f;

@@ -215,14 +215,11 @@ impl FluidForces {
         let [ox, oy, oz] = out;
         let with_out = n_out.div_ceil(CHUNK);
         let without = upto.div_ceil(CHUNK) - with_out;
-        let outputs = (
-            ox[..n_out].par_chunks_mut(CHUNK),
-            oy[..n_out].par_chunks_mut(CHUNK),
-            oz[..n_out].par_chunks_mut(CHUNK),
-        )
-            .into_par_iter()
-            .map(Some)
-            .chain((0..without).into_par_iter().map(|_| None));
+        let outputs =
+            (ox[..n_out].par_chunks_mut(CHUNK), oy[..n_out].par_chunks_mut(CHUNK), oz[..n_out].par_chunks_mut(CHUNK))
+                .into_par_iter()
+                .map(Some)
+                .chain((0..without).into_par_iter().map(|_| None));
         (state.into_par_iter(), scratch.into_par_iter(), outputs).into_par_iter().enumerate().for_each(
             |(c, ((k, urx, fluct, left, fresh, rng), (re, re_star, cd, hind, phi_p, ur), out))| {
                 let o = c * CHUNK;

@@ -91,7 +91,11 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         _ => format!(
             "no averaging sample (the window opens at solver.stats_start = {} s{}): no transport figures",
             m.config().settings.stats_start,
-            if m.config().settings.fluid == super::config::FluidMode::Off { ", and runs without fluid take none" } else { "" }
+            if m.config().settings.fluid == super::config::FluidMode::Off {
+                ", and runs without fluid take none"
+            } else {
+                ""
+            }
         ),
     };
     let text = format!(
