@@ -1,6 +1,6 @@
 //! The coupled run: deposition, then DEM steps with the fluid column solved every fluid
-//! period (Maurin et al. 2015 section II D). The deposition lives in
-//! [`super::deposition`], the driver's view of the run in [`super::stepper`].
+//! period (Maurin et al. 2015 section II D). The deposition lives in `deposition.rs`, the
+//! driver's view of the run in [`super::stepper`].
 
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
