@@ -47,7 +47,9 @@ fn an_eulerian_run_to_its_end_time_returns_the_state_it_wrote() {
     let w = written_summary(&out);
     assert_eq!(w["ending"].as_str(), Some("end_time"));
     assert_eq!(w["steps"].as_u64(), Some(sum.steps as u64));
-    assert_eq!(w["qs"].as_f64(), sum.qs);
+    let (written, returned) = (w["qs"].as_f64().expect("qs written"), sum.qs.expect("qs measured"));
+    // JSON's shortest decimal reads back to within one unit in the last place
+    assert!((written / returned - 1.0).abs() < 1e-15, "{written} vs {returned}");
     let _ = std::fs::remove_dir_all(&out);
 }
 
@@ -75,8 +77,9 @@ fn an_interrupted_dem_run_writes_and_returns_its_state() {
     assert!(sum.error.is_some() && sum.mass_error.is_none() && sum.rejected_steps.is_none());
     let w = written_summary(&out);
     assert_eq!(w["ending"].as_str(), Some("interrupted"));
-    // a single sphere in still water: qs is measured (it falls), with the same value
-    // written and returned
+    // a single sphere in still water: qs is measured from the samples taken (zero: it
+    // falls straight down), written as returned
     assert_eq!(w["qs"].as_f64(), sum.qs);
+    assert!(sum.qs.is_some());
     let _ = std::fs::remove_dir_all(&out);
 }
