@@ -3,7 +3,7 @@
 //! Solvers of saltus: `eulerian` ([`eulerian`], the two-fluid column of Chassagne et al.
 //! 2023) and `lagrangian` ([`lagrangian`], soft-sphere DEM coupled to the column, Maurin
 //! et al. 2015). [`mod@column`] is the fluid column shared by both. [`resolve`] turns a
-//! scene into its solver, the only place that dispatches on the solver type; [`run`]
+//! scene into its solver, the only place that dispatches on the solver type; [`run()`]
 //! drives it ([`run::drive`]) and writes its outputs.
 
 // Errors carry file, key and message for the user; they are built once per failed run,

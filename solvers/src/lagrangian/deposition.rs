@@ -27,7 +27,7 @@ impl Lagrangian<'_> {
         let fluid = self.cfg.settings.fluid != FluidMode::Off;
         let end = (self.settle_steps + self.fluid_every).min(self.settle_total).min(max_steps);
         while self.settle_steps < end {
-            let update = self.settle_steps % self.fluid_every == 0 && fluid;
+            let update = self.settle_steps.is_multiple_of(self.fluid_every) && fluid;
             self.dem_step(update);
             self.settle_steps += 1;
             if update {
