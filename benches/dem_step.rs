@@ -8,6 +8,7 @@ use std::path::Path;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use saltus_core::scene::Scene;
 use saltus_solvers::lagrangian::{Config, Lagrangian};
+use saltus_solvers::run::Stepper;
 
 fn coupled_step(c: &mut Criterion) {
     saltus_closures::link();
@@ -28,15 +29,15 @@ fn coupled_step(c: &mut Criterion) {
         let cfg = Config::from_scene(&scene).expect("config");
         let mut m = Lagrangian::new(&scene, cfg).expect("solver");
         pool.install(|| {
-            m.start().expect("deposition");
+            m.deposit().expect("deposition");
             // let the flow start so that the bed moves and contacts change
             for _ in 0..50 {
-                assert!(m.advance().is_none());
+                assert!(m.step().is_none());
             }
         });
         group.throughput(Throughput::Elements(m.mobile() as u64));
         group.bench_function(format!("{}_particles_{threads}_threads", m.mobile()), |b| {
-            b.iter(|| pool.install(|| m.step().expect("step")))
+            b.iter(|| pool.install(|| m.step_dem().expect("step")))
         });
     }
     group.finish();

@@ -260,13 +260,14 @@ impl CompareReport {
 
 fn summary_cells(s: &saltus_solvers::Summary, precise: bool) -> Vec<String> {
     if precise {
+        let precise = |x: Option<f64>| x.map_or_else(String::new, |v| format!("{v:?}"));
         return vec![
             s.solver.clone(),
-            format!("{:?}", s.qs_star),
-            format!("{:?}", s.qs),
-            format!("{:?}", s.shields),
-            format!("{:?}", s.bed_height),
-            format!("{:?}", s.transport_layer_thickness),
+            precise(s.qs_star),
+            precise(s.qs),
+            precise(s.shields),
+            precise(s.bed_height),
+            precise(s.transport_layer_thickness),
             s.steady.to_string(),
             format!("{:?}", s.sim_time_s),
             s.steps.to_string(),
@@ -274,13 +275,15 @@ fn summary_cells(s: &saltus_solvers::Summary, precise: bool) -> Vec<String> {
             s.mass_error.map_or_else(String::new, |m| format!("{m:?}")),
         ];
     }
+    // an absent figure is an empty cell
+    let rounded = |x: Option<f64>, f: fn(f64) -> String| x.map_or_else(String::new, f);
     vec![
         s.solver.clone(),
-        format!("{:.4}", s.qs_star),
-        format!("{:.4e}", s.qs),
-        format!("{:.3}", s.shields),
-        format!("{:.4}", s.bed_height),
-        format!("{:.4}", s.transport_layer_thickness),
+        rounded(s.qs_star, |v| format!("{v:.4}")),
+        rounded(s.qs, |v| format!("{v:.4e}")),
+        rounded(s.shields, |v| format!("{v:.3}")),
+        rounded(s.bed_height, |v| format!("{v:.4}")),
+        rounded(s.transport_layer_thickness, |v| format!("{v:.4}")),
         s.steady.to_string(),
         format!("{:.2}", s.sim_time_s),
         s.steps.to_string(),

@@ -133,7 +133,9 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
-            ExitCode::from(2)
+            // a run stopped early wrote its outputs and says how it stopped; anything
+            // else is a failure before or around the work
+            ExitCode::from(e.downcast_ref::<saltus::runner::Stopped>().map_or(2, |s| s.code))
         }
     }
 }
@@ -175,22 +177,25 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let s = load(&scene, &set)?;
             let out = out.unwrap_or_else(|| saltus::runner::default_out(&s));
             let bar = saltus::runner::progress_bar(std::io::stderr().is_terminal());
+            if let Err(e) = saltus::runner::catch_interrupt() {
+                eprintln!("warning: {e:#}; Ctrl-C ends the run without writing its outputs");
+            }
             let outcome = saltus::runner::run_scene(&s, &out, &bar);
             for w in &outcome.warnings {
                 eprintln!("warning: {w}");
             }
-            if let Some(e) = outcome.error {
-                return Err(match &outcome.figure {
-                    Some(png) => anyhow::anyhow!("{e}; drawn in {}", png.display()),
-                    None => e.into(),
-                });
-            }
-            if let Some(report) = &outcome.report {
-                outln!("{report}");
-            }
+            let Some(report) = &outcome.report else {
+                anyhow::bail!("{}", outcome.error.unwrap_or_else(|| "the run failed".into()));
+            };
+            // the last state is reported whatever the ending; an early stop then sets
+            // the exit code (see `saltus::runner::Stopped`)
+            outln!("{report}");
             outln!("outputs: {}", out.display());
             if let Some(png) = &outcome.figure {
                 outln!("figure:  {}", png.display());
+            }
+            if let Some(stopped) = outcome.stopped(&s, &out) {
+                return Err(stopped.into());
             }
         }
         Command::Compare { file, set, out } => {

@@ -2,14 +2,16 @@
 //! profile figure `profiles.png` next to the solver's outputs. Also used by
 //! `saltus compare` for each variant.
 
+use std::fmt;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant, SystemTime};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use saltus_core::scene::Scene;
-use saltus_solvers::{Profiles, Progress, RunReport, Summary};
-use serde::Deserialize;
+use saltus_solvers::run::{Control, Phase};
+use saltus_solvers::{Ending, Progress, RunReport};
 
 use crate::plot::{self, Reference, RUN_PANELS};
 use crate::table::Table;
@@ -17,15 +19,23 @@ use crate::table::Table;
 /// File name of the profile figure written next to the solver's outputs.
 pub const FIGURE: &str = "profiles.png";
 
+/// Exit code of a run that went unstable (its last good state is written).
+pub const EXIT_UNSTABLE: u8 = 1;
+/// Exit code of a run stopped by Ctrl-C (its state at that time is written), as a shell
+/// reports a process ended by SIGINT.
+pub const EXIT_INTERRUPTED: u8 = 130;
+
 /// What a run left behind.
 #[derive(Debug)]
 pub struct RunOutcome {
-    /// profiles and summary: the solver's report, or after a failed (unstable) run the
-    /// last good state the solver wrote, read back (with an empty `text`); `None` when
-    /// the solver failed before writing anything
+    /// how the run ended; `None` when it could not be set up or its outputs not written
+    pub ending: Option<Ending>,
+    /// profiles, summary and paragraph of the last state, as the solver returned them
+    /// (also after a breakdown or an interruption); `None` with `ending`
     pub report: Option<RunReport>,
-    /// the solver's error, if it failed
-    pub error: Option<saltus_core::Error>,
+    /// why the run failed or stopped early (set-up or write error, breakdown,
+    /// interruption)
+    pub error: Option<String>,
     /// the profile figure, when drawn
     pub figure: Option<PathBuf>,
     /// things the user should know that did not fail the run (missing reference data, a
@@ -33,7 +43,76 @@ pub struct RunOutcome {
     pub warnings: Vec<String>,
 }
 
-/// A progress bar over simulated time, drawn on stderr when `visible`, hidden otherwise.
+/// A run that ended early but wrote its outputs: the message and the exit code.
+#[derive(Debug)]
+pub struct Stopped {
+    /// [`EXIT_UNSTABLE`] or [`EXIT_INTERRUPTED`]
+    pub code: u8,
+    /// what happened and where the outputs are
+    pub message: String,
+}
+
+impl fmt::Display for Stopped {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for Stopped {}
+
+impl RunOutcome {
+    /// The early stop of this run, for the exit code; `None` when it ran to its end or
+    /// failed before running.
+    pub fn stopped(&self, scene: &Scene, out: &Path) -> Option<Stopped> {
+        let (ending, report) = (self.ending.as_ref()?, self.report.as_ref()?);
+        let t = report.summary.sim_time_s;
+        let drawn = self.figure.as_ref().map_or_else(String::new, |p| format!("; drawn in {}", p.display()));
+        let file = scene.path.display();
+        match ending {
+            Ending::Unstable(b) => Some(Stopped {
+                code: EXIT_UNSTABLE,
+                message: format!(
+                    "{file}: run stopped, unstable at {b}; the last good state (t = {t:.6} s) is written to {}{drawn}",
+                    out.display()
+                ),
+            }),
+            Ending::Interrupted => Some(Stopped {
+                code: EXIT_INTERRUPTED,
+                message: format!(
+                    "{file}: interrupted at t = {t:.6} s; the state at that time is written to {}{drawn}",
+                    out.display()
+                ),
+            }),
+            Ending::Steady | Ending::EndTime | Ending::MaxSteps => None,
+        }
+    }
+}
+
+/// Set by Ctrl-C: runs in progress stop after their current unit of work.
+static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// Catch Ctrl-C: the first one stops the runs in progress through their observer (each
+/// writes its outputs, ending `interrupted`), a second one quits at once with
+/// [`EXIT_INTERRUPTED`]. Call once per process.
+pub fn catch_interrupt() -> anyhow::Result<()> {
+    ctrlc::set_handler(|| {
+        if INTERRUPTED.swap(true, Ordering::SeqCst) {
+            std::process::exit(EXIT_INTERRUPTED.into());
+        }
+        eprintln!(
+            "\ninterrupted: stopping after the current step and writing the outputs (Ctrl-C again to quit at once)"
+        );
+    })
+    .context("cannot catch Ctrl-C")
+}
+
+/// Whether Ctrl-C was pressed.
+pub fn interrupted() -> bool {
+    INTERRUPTED.load(Ordering::SeqCst)
+}
+
+/// A progress bar over simulated time, drawn on stderr when `visible`, hidden otherwise
+/// (then [`run_scene`] prints a progress line every [`LOG_EVERY`] instead).
 pub fn progress_bar(visible: bool) -> ProgressBar {
     let target = if visible { ProgressDrawTarget::stderr() } else { ProgressDrawTarget::hidden() };
     let bar = ProgressBar::with_draw_target(None, target);
@@ -57,45 +136,83 @@ pub fn style_bar(bar: &ProgressBar, prefix: &str) {
 /// Positions of the progress bar per simulated second.
 const TICKS_PER_SECOND: f64 = 1000.0;
 
-/// Run `scene` into `out`, showing progress on `bar` (see [`progress_bar`]), then draw
-/// `profiles.png` in `out`, also after an unstable run (from the last good state the
-/// solver wrote). Reference data that cannot be read gives a warning, not a failure.
+/// Wall time between two progress lines when stderr is no terminal (a log, CI).
+pub const LOG_EVERY: Duration = Duration::from_secs(10);
+
+/// One line of progress: phase, time, step, time step and, once there is one, the
+/// residual.
+pub fn describe(p: &Progress) -> String {
+    let phase = match p.phase {
+        Phase::Setup => "deposition",
+        Phase::Flow => "flow",
+    };
+    let mut s = format!("{phase} t = {:.3} / {:.3} s  step {}  dt = {:.2e} s", p.time, p.end_time, p.steps, p.dt);
+    if let Some(r) = p.residual {
+        s.push_str(&format!("  residual {r:.2e}"));
+    }
+    s
+}
+
+/// Run `scene` into `out`, showing progress on `bar` (see [`progress_bar`]; a hidden bar
+/// gets a line on stderr every [`LOG_EVERY`]), then draw `profiles.png` in `out` from
+/// the state the run returned, whatever its ending. Ctrl-C (see [`catch_interrupt`])
+/// stops the run with its outputs written. Reference data that cannot be read gives a
+/// warning, not a failure.
 pub fn run_scene(scene: &Scene, out: &Path, bar: &ProgressBar) -> RunOutcome {
     let mut last: Option<Instant> = None;
+    let started = Instant::now();
+    let mut next_line = LOG_EVERY;
+    let label = if bar.prefix().is_empty() { scene.meta.name.clone() } else { bar.prefix() };
     let mut observer = |p: &Progress| {
-        if !matches!(last, Some(t) if t.elapsed() < Duration::from_millis(50)) {
+        if interrupted() {
+            return Control::Stop;
+        }
+        if bar.is_hidden() {
+            let elapsed = started.elapsed();
+            if elapsed >= next_line {
+                while next_line <= elapsed {
+                    next_line += LOG_EVERY;
+                }
+                eprintln!("{label}: [{:.0} s] {}", elapsed.as_secs_f64(), describe(p));
+            }
+        } else if !matches!(last, Some(t) if t.elapsed() < Duration::from_millis(50)) {
             last = Some(Instant::now());
             bar.set_length((p.end_time * TICKS_PER_SECOND) as u64);
             bar.set_position((p.time * TICKS_PER_SECOND) as u64);
-            bar.set_message(format!(
-                "t = {:.3} / {:.0} s  step {}  dt = {:.2e} s  residual {:.2e} /s",
-                p.time, p.end_time, p.steps, p.dt, p.residual
-            ));
+            bar.set_message(describe(p));
         }
-        true
+        Control::Continue
     };
-    let started = SystemTime::now();
     let result = saltus_solvers::run(scene, out, &mut observer);
     bar.finish_and_clear();
     let mut warnings = Vec::new();
-    let (report, error) = match result {
-        Ok(r) => (Some(r), None),
-        Err(e) => (last_good_state(out, started), Some(e)),
+    let run = match result {
+        Ok(r) => r,
+        Err(e) => return RunOutcome { ending: None, report: None, error: Some(e.to_string()), figure: None, warnings },
     };
-    let figure = report.as_ref().and_then(|r| {
-        let png = out.join(FIGURE);
-        match draw_run(scene, r, error.is_some(), &png, &mut warnings) {
-            Ok(()) => Some(png),
-            Err(e) => {
-                warnings.push(format!("{}: cannot draw: {e:#}", png.display()));
-                None
-            }
+    let png = out.join(FIGURE);
+    let figure = match draw_run(scene, &run.report, &run.ending, &png, &mut warnings) {
+        Ok(()) => Some(png),
+        Err(e) => {
+            warnings.push(format!("{}: cannot draw: {e:#}", png.display()));
+            None
         }
-    });
-    RunOutcome { report, error, figure, warnings }
+    };
+    let error = match &run.ending {
+        Ending::Unstable(b) => Some(format!("unstable at {b}")),
+        Ending::Interrupted => Some(format!("interrupted at t = {:.6} s", run.report.summary.sim_time_s)),
+        Ending::Steady | Ending::EndTime | Ending::MaxSteps => None,
+    };
+    RunOutcome { ending: Some(run.ending), report: Some(run.report), error, figure, warnings }
 }
 
-fn draw_run(scene: &Scene, r: &RunReport, failed: bool, png: &Path, warnings: &mut Vec<String>) -> anyhow::Result<()> {
+fn draw_run(
+    scene: &Scene,
+    r: &RunReport,
+    ending: &Ending,
+    png: &Path,
+    warnings: &mut Vec<String>,
+) -> anyhow::Result<()> {
     let reference = match load_reference(scene) {
         Ok(r) => r,
         Err(e) => {
@@ -105,78 +222,17 @@ fn draw_run(scene: &Scene, r: &RunReport, failed: bool, png: &Path, warnings: &m
     };
     let s = &r.summary;
     let name = if scene.meta.name.is_empty() { "run" } else { scene.meta.name.as_str() };
-    let title = if failed {
-        format!("{name}: stopped ({}) at t = {:.3} s, last good state", s.ending, s.sim_time_s)
-    } else {
-        format!("{name}: {} at t = {:.1} s, qs* = {:.3}, Shields {:.3}", s.ending, s.sim_time_s, s.qs_star, s.shields)
+    let title = match (ending, s.qs_star, s.shields) {
+        (Ending::Unstable(_) | Ending::Interrupted, _, _) => {
+            format!("{name}: stopped ({}) at t = {:.3} s, last good state", s.ending, s.sim_time_s)
+        }
+        (_, Some(q), Some(sh)) => {
+            format!("{name}: {} at t = {:.1} s, qs* = {q:.3}, Shields {sh:.3}", s.ending, s.sim_time_s)
+        }
+        _ => format!("{name}: {} at t = {:.1} s, no transport measured", s.ending, s.sim_time_s),
     };
     let reference: Vec<Reference> = reference.iter().map(|(label, table)| Reference { label, table }).collect();
     plot::draw_profiles(&title, &RUN_PANELS, &[(name.to_string(), &r.profiles)], &reference, png)
-}
-
-/// After a failed run: the summary and profiles the solver wrote into `out` during this
-/// run (written at or after `started`, and ending as unstable), or `None`.
-fn last_good_state(out: &Path, started: SystemTime) -> Option<RunReport> {
-    let summary_path = out.join("summary.json");
-    // coarse file-system clocks may stamp a fresh file slightly before `started`
-    let fresh = std::fs::metadata(&summary_path)
-        .and_then(|m| m.modified())
-        .is_ok_and(|t| t + Duration::from_secs(1) >= started);
-    if !fresh {
-        return None;
-    }
-    let summary = read_summary(&summary_path).ok()?;
-    if summary.ending != "unstable" {
-        return None;
-    }
-    let profiles = read_profiles(&out.join("profiles.csv")).ok()?;
-    Some(RunReport { profiles, summary, text: String::new() })
-}
-
-/// Read a `summary.json` written by a solver. JSON has no NaN: serde_json writes a NaN
-/// number (the bed height of a run without transport, say) as `null`, which `Summary`
-/// does not read back; such nulls are read as NaN here.
-pub fn read_summary(path: &Path) -> anyhow::Result<Summary> {
-    fn nan_for_null(v: serde_json::Value) -> toml::Value {
-        use serde_json::Value as J;
-        match v {
-            J::Null => toml::Value::Float(f64::NAN),
-            J::Bool(b) => toml::Value::Boolean(b),
-            J::Number(n) => match n.as_i64() {
-                Some(i) => toml::Value::Integer(i),
-                None => toml::Value::Float(n.as_f64().unwrap_or(f64::NAN)),
-            },
-            J::String(s) => toml::Value::String(s),
-            J::Array(a) => toml::Value::Array(a.into_iter().map(nan_for_null).collect()),
-            J::Object(o) => toml::Value::Table(o.into_iter().map(|(k, v)| (k, nan_for_null(v))).collect()),
-        }
-    }
-    let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
-    let json: serde_json::Value = serde_json::from_str(&text).with_context(|| format!("{}", path.display()))?;
-    Summary::deserialize(nan_for_null(json)).with_context(|| format!("{}", path.display()))
-}
-
-/// Read a `profiles.csv` written by a solver (header line, then numbers; NaN and inf
-/// allowed, since a failing run may leave them).
-pub fn read_profiles(path: &Path) -> anyhow::Result<Profiles> {
-    let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
-    let mut lines = text.lines();
-    let names: Vec<&str> = lines.next().unwrap_or("").split(',').map(str::trim).collect();
-    let mut columns = vec![Vec::new(); names.len()];
-    for (i, line) in lines.enumerate().filter(|(_, l)| !l.trim().is_empty()) {
-        let cells: Vec<&str> = line.split(',').map(str::trim).collect();
-        if cells.len() != names.len() {
-            bail!("{}: row {} has {} cells, the header has {}", path.display(), i + 2, cells.len(), names.len());
-        }
-        for (c, cell) in columns.iter_mut().zip(cells) {
-            c.push(cell.parse::<f64>().with_context(|| format!("{}: row {}: `{cell}`", path.display(), i + 2))?);
-        }
-    }
-    let mut p = Profiles::default();
-    for (n, c) in names.into_iter().zip(columns) {
-        p.push(n, c);
-    }
-    Ok(p)
 }
 
 /// The scene's reference data (`[reference]` or `[[reference]]`): per file a legend label

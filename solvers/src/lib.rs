@@ -1,9 +1,10 @@
 //! # saltus-solvers
 //!
-//! Solvers of saltus. The entry point [`run()`] dispatches on the scene's `[solver] type`:
-//! `eulerian` ([`eulerian`], the two-fluid column of Chassagne et al. 2023) and
-//! `lagrangian` ([`lagrangian`], soft-sphere DEM coupled to the column, Maurin et al.
-//! 2015). [`mod@column`] is the fluid column shared by both.
+//! Solvers of saltus: `eulerian` ([`eulerian`], the two-fluid column of Chassagne et al.
+//! 2023) and `lagrangian` ([`lagrangian`], soft-sphere DEM coupled to the column, Maurin
+//! et al. 2015). [`mod@column`] is the fluid column shared by both. [`resolve`] turns a
+//! scene into its solver, the only place that dispatches on the solver type; [`run()`]
+//! drives it ([`run::drive`]) and writes its outputs.
 
 // Errors carry file, key and message for the user; they are built once per failed run,
 // never in a hot loop, so their size does not matter.
@@ -20,30 +21,12 @@ pub mod validate;
 use std::fmt;
 use std::path::Path;
 
-use saltus_core::scene::Scene;
+use saltus_core::scene::{Scene, SolverKind};
 use saltus_core::Error;
 
 pub use output::{Profiles, Summary};
+pub use run::{Ending, Observer, Progress, Stepper};
 pub use validate::validate;
-
-/// Progress record of the legacy observer of [`run()`] (the driver's is
-/// [`run::Progress`]); kept until the Lagrangian solver implements [`run::Stepper`].
-#[derive(Clone, Copy, Debug)]
-pub struct Progress {
-    /// simulated time (s)
-    pub time: f64,
-    /// end time (s)
-    pub end_time: f64,
-    /// accepted steps
-    pub steps: usize,
-    /// current time step (s)
-    pub dt: f64,
-    /// steady residual
-    pub residual: f64,
-}
-
-/// Solvers the program knows, with whether this build implements them.
-pub const SOLVERS: [(&str, bool); 2] = [("eulerian", true), ("lagrangian", true)];
 
 /// Result of a run: what was written, and a paragraph for the terminal.
 #[derive(Clone, Debug, Default)]
@@ -62,44 +45,43 @@ impl fmt::Display for RunReport {
     }
 }
 
-/// Name of the scene's solver (`[solver] type`, checked when the scene was loaded).
-pub fn solver_name(scene: &Scene) -> Result<&str, Error> {
-    Ok(scene.solver.kind.name())
+/// How a run ended, with the last state: returned on every ending, after the outputs
+/// are written.
+#[derive(Clone, Debug)]
+pub struct RunOutcome {
+    /// why the run stopped
+    pub ending: Ending,
+    /// profiles, summary and paragraph of the last state (as written)
+    pub report: RunReport,
+    /// wall-clock time of the run (s)
+    pub wall: f64,
 }
 
-/// Run `scene`, writing its outputs into `out`. `observer` sees every accepted step and
-/// may stop the run by returning `false`. A run that breaks down writes the last good
-/// state and a summary carrying the error, then returns the error.
-pub fn run(scene: &Scene, out: &Path, observer: &mut dyn FnMut(&Progress) -> bool) -> Result<RunReport, Error> {
-    if solver_name(scene)? == "lagrangian" {
-        return lagrangian::run(scene, out, observer);
-    }
-    let cfg = eulerian::Config::from_scene(scene)?;
-    let mut model = eulerian::Eulerian::new(scene, cfg)?;
-    let mut legacy = |p: &run::Progress| {
-        let go_on = observer(&Progress {
-            time: p.time,
-            end_time: p.end_time,
-            steps: p.steps as usize,
-            dt: p.dt,
-            residual: p.residual.unwrap_or(f64::INFINITY),
-        });
-        if go_on {
-            run::Control::Continue
-        } else {
-            run::Control::Stop
+/// The solver of `scene`, set up and ready to step. The only dispatch on the solver type.
+pub fn resolve(scene: &Scene) -> Result<Box<dyn Stepper + '_>, Error> {
+    Ok(match scene.solver.kind {
+        SolverKind::Eulerian => {
+            let cfg = eulerian::Config::from_scene(scene)?;
+            Box::new(eulerian::Eulerian::new(scene, cfg)?)
         }
-    };
-    let (ending, wall) = run::drive(&mut model, &mut legacy);
-    let report = run::Stepper::report(&model, &ending, wall);
+        SolverKind::Lagrangian => {
+            let cfg = lagrangian::Config::from_scene(scene)?;
+            Box::new(lagrangian::Lagrangian::new(scene, cfg)?)
+        }
+    })
+}
+
+/// Run `scene`, writing its outputs into `out`. `observer` sees every unit of work and
+/// may stop the run ([`Ending::Interrupted`]). Every ending, an unstable one included,
+/// writes the last state and returns it; `Err` only when the scene cannot be set up or
+/// the outputs cannot be written.
+pub fn run(scene: &Scene, out: &Path, observer: &mut dyn Observer) -> Result<RunOutcome, Error> {
+    let mut stepper = resolve(scene)?;
+    // a folder that cannot be made fails before the work, not after it
+    std::fs::create_dir_all(out).map_err(|source| Error::Io { file: out.to_path_buf(), source })?;
+    stepper.set_output_dir(out);
+    let (ending, wall) = run::drive(stepper.as_mut(), observer);
+    let report = stepper.report(&ending, wall);
     output::write_run(out, scene, &report.profiles, &report.summary)?;
-    if let run::Ending::Unstable(b) = ending {
-        return Err(Error::Invalid(format!(
-            "{}: run stopped, unstable at {b}; the state at t = {:.6} s is written to {}",
-            scene.path.display(),
-            model.time(),
-            out.display()
-        )));
-    }
-    Ok(report)
+    Ok(RunOutcome { ending, report, wall })
 }

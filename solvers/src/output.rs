@@ -49,22 +49,31 @@ pub struct Summary {
     pub scene: String,
     /// solver
     pub solver: String,
-    /// transport rate per unit width, integral of phi u_p dz (m^2/s)
-    pub qs: f64,
-    /// qs / sqrt((s - 1) g d^3)
-    pub qs_star: f64,
-    /// largest fluid shear stress (viscous + turbulent) over (rho_p - rho_f) g d
-    pub shields: f64,
+    /// transport rate per unit width, integral of phi u_p dz (m^2/s); absent when the run
+    /// measured none (a DEM run that ended before its first averaging sample, or without
+    /// fluid)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub qs: Option<f64>,
+    /// qs / sqrt((s - 1) g d^3); absent with qs or without a density contrast
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub qs_star: Option<f64>,
+    /// largest fluid shear stress (viscous + turbulent) over (rho_p - rho_f) g d; absent
+    /// when not measured
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shields: Option<f64>,
     /// rho_f g sin(alpha) h_w / ((rho_p - rho_f) g cos(alpha) d) with the scene's water depth
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shields_nominal: Option<f64>,
-    /// level below which 1 % of qs flows (m): the bed surface
-    pub bed_height: f64,
-    /// distance between the levels below which 1 % and 99 % of qs flow (m)
-    pub transport_layer_thickness: f64,
+    /// level below which 1 % of qs flows (m): the bed surface; absent without transport
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bed_height: Option<f64>,
+    /// distance between the levels below which 1 % and 99 % of qs flow (m); absent
+    /// without transport
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transport_layer_thickness: Option<f64>,
     /// steady-state criterion met
     pub steady: bool,
-    /// steady, end_time, max_steps or unstable
+    /// steady, end_time, max_steps, interrupted or unstable
     pub ending: String,
     /// simulated time (s)
     pub sim_time_s: f64,
@@ -79,8 +88,10 @@ pub struct Summary {
     /// measure it (the DEM conserves its particles by construction)
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mass_error: Option<f64>,
-    /// last steady residual (1/s)
-    pub residual: f64,
+    /// last steady residual in the solver's measure (see [`crate::run::Progress`]); absent
+    /// before the solver has one
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub residual: Option<f64>,
     /// number of cells
     pub cells: usize,
     /// why the run stopped early, if it did
@@ -206,6 +217,11 @@ impl TransportScales {
             f64::NAN
         }
     }
+}
+
+/// `x` when it is a finite number: a summary figure that is not one is absent.
+pub fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
 }
 
 /// Levels (m) below which the fractions `lo` and `hi` of the integral of `q dz` lie,

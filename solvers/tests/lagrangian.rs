@@ -4,7 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use saltus_core::scene::Scene;
-use saltus_solvers::lagrangian::{Config, Ending, Lagrangian};
+use saltus_solvers::lagrangian::{Config, Lagrangian};
+use saltus_solvers::run::{drive, Ending, Phase, Place, Quiet, Stepper};
 
 fn case(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join("cases").join(name)
@@ -22,7 +23,7 @@ fn model(scene: &Scene) -> Lagrangian<'_> {
 }
 
 fn run_to_end(m: &mut Lagrangian<'_>) {
-    let ending = m.run(&mut |_| true);
+    let (ending, _) = drive(m, &mut Quiet);
     assert_eq!(ending, Ending::EndTime);
 }
 
@@ -33,7 +34,7 @@ fn head_on_collision_gives_the_restitution_coefficient() {
         let s = scene("verification/dem_binary_collision.toml", &[&format!("particles.restitution={e}")]);
         let mut m = model(&s);
         run_to_end(&mut m);
-        let p = &m.dem.p;
+        let p = m.particles();
         let measured = (p.vx[1] - p.vx[0]) / 0.2;
         assert!((measured / e - 1.0).abs() < 0.01, "e = {e}: measured {measured}");
         // momentum is conserved to round-off
@@ -49,17 +50,17 @@ fn sliding_sphere_obeys_coulomb_and_ends_rolling() {
     let (mu, g, v0, r) = (0.4, 9.81, 1.0, 3.0e-3);
     let t_star = 2.0 * v0 / (7.0 * mu * g);
     let mut m = model(&s);
-    m.start().expect("start");
+    m.deposit().expect("deposition");
     // sliding: v = v0 - mu g t, omega = (5/2) mu g t / R
     while m.time() < 0.5 * t_star {
-        assert!(m.advance().is_none());
+        assert!(m.step().is_none());
     }
     let t = m.time();
-    let (v, w) = (m.dem.p.vx[0], m.dem.p.wy[0]);
+    let (v, w) = (m.particles().vx[0], m.particles().wy[0]);
     assert!(((v0 - v) / (mu * g * t) - 1.0).abs() < 0.01, "deceleration {} vs mu g = {}", (v0 - v) / t, mu * g);
     assert!((w * r / (2.5 * mu * g * t) - 1.0).abs() < 0.01, "spin {w}");
-    while m.advance().is_none() {}
-    let (v, w) = (m.dem.p.vx[0], m.dem.p.wy[0]);
+    while m.step().is_none() {}
+    let (v, w) = (m.particles().vx[0], m.particles().wy[0]);
     assert!((v / (5.0 / 7.0 * v0) - 1.0).abs() < 0.01, "rolling speed {v} vs 5/7 v0");
     assert!((w * r / v - 1.0).abs() < 0.01, "rolling without slip: omega R = {} vs v = {v}", w * r);
 }
@@ -73,17 +74,17 @@ fn elastic_frictionless_gas_conserves_energy() {
         &["particles.restitution=1.0", "solver.lagrangian.end_time=0.25", "solver.lagrangian.gas_temperature=0.04"],
     );
     let mut m = model(&s);
-    m.start().expect("start");
-    let energy = |m: &Lagrangian<'_>| m.dem.p.translational_energy() + m.dem.normal_spring_energy();
+    m.deposit().expect("deposition");
+    let energy = |m: &Lagrangian<'_>| m.particles().translational_energy() + m.dem().normal_spring_energy();
     let e0 = energy(&m);
     let mut worst: f64 = 0.0;
-    while m.advance().is_none() {
+    while m.step().is_none() {
         worst = worst.max((energy(&m) / e0 - 1.0).abs());
     }
-    assert!(m.dem.list.builds > 1);
+    assert!(m.dem().list().builds > 1);
     assert!(worst < 2e-3, "relative energy error {worst}");
     // no friction: the only torque is the round-off of n x (f_n n)
-    assert!(m.dem.p.rotational_energy() < 1e-20 * e0, "{}", m.dem.p.rotational_energy());
+    assert!(m.particles().rotational_energy() < 1e-20 * e0, "{}", m.particles().rotational_energy());
     eprintln!("relative energy error {worst:e} over {} steps", m.steps());
 }
 
@@ -93,9 +94,9 @@ fn single_sphere_settles_at_the_dallavalle_terminal_velocity() {
     let s = scene("verification/dem_settling.toml", &[]);
     let mut m = model(&s);
     run_to_end(&mut m);
-    let w = -m.dem.p.vz[0];
+    let w = -m.particles().vz[0];
     assert!((w / 0.53743 - 1.0).abs() < 0.01, "terminal velocity {w}");
-    assert!(m.dem.p.vx[0].abs() < 1e-12);
+    assert!(m.particles().vx[0].abs() < 1e-12);
 }
 
 #[test]
@@ -110,8 +111,8 @@ fn homogeneous_cooling_follows_haff_with_the_kinetic_theory_rate() {
     use saltus_closures::granular::kinetic::{garzo_dufty, radial_distribution};
     let s = scene("verification/dem_homogeneous_cooling.toml", &[]);
     let mut m = model(&s);
-    m.start().expect("start");
-    let p0 = &m.dem.p;
+    m.deposit().expect("deposition");
+    let p0 = m.particles();
     let (d, e) = (6.0e-3, 0.8);
     let volume = 0.1313f64.powi(3);
     let phi = p0.n_mobile as f64 * std::f64::consts::PI * d * d * d / 6.0 / volume;
@@ -121,8 +122,8 @@ fn homogeneous_cooling_follows_haff_with_the_kinetic_theory_rate() {
     // (3/2) phi dT/dt = -F4 T^{3/2} / d  =>  tau = 3 phi d / (F4 sqrt(T0))
     let tau = 3.0 * phi * d / (f4 * t0.sqrt());
     let mut samples = vec![(0.0, t0)];
-    while m.advance().is_none() {
-        samples.push((m.time(), m.dem.p.temperature()));
+    while m.step().is_none() {
+        samples.push((m.time(), m.particles().temperature()));
     }
     assert!(m.time() > 3.9 * tau, "run too short: {} s vs tau = {tau} s", m.time());
     // least squares of y = 1/sqrt(T) against t
@@ -176,13 +177,13 @@ fn state_in_pool(s: &Scene, threads: usize) -> (Vec<u64>, usize) {
     pool.install(|| {
         let mut m = model(s);
         run_to_end(&mut m);
-        let p = &m.dem.p;
+        let p = m.particles();
         let mut bits: Vec<u64> = Vec::new();
         for v in [&p.x, &p.y, &p.z, &p.vx, &p.vy, &p.vz, &p.wx, &p.wy, &p.wz] {
             bits.extend(v.iter().map(|x| x.to_bits()));
         }
-        bits.extend(m.field.u.iter().map(|x| x.to_bits()));
-        bits.extend(m.forces.fluct.iter().flat_map(|f| f.iter().map(|x| x.to_bits())));
+        bits.extend(m.fluid_velocity().iter().map(|x| x.to_bits()));
+        bits.extend(m.forces().fluctuations().iter().flat_map(|f| f.iter().map(|x| x.to_bits())));
         (bits, p.n_mobile)
     })
 }
@@ -209,24 +210,24 @@ fn coupled_run_keeps_its_particles_and_dephases_the_eddies() {
     // lagrangian::averaging::tests::beta_transfers_the_particle_drag)
     let s = small_bed(&[]);
     let mut m = model(&s);
-    m.start().expect("start");
-    let n0 = m.dem.p.len();
+    m.deposit().expect("deposition");
+    let n0 = m.particles().len();
     for _ in 0..5 {
-        assert!(m.advance().is_none());
+        assert!(m.step().is_none());
     }
-    assert_eq!(m.dem.p.len(), n0);
-    let p = &m.dem.p;
+    assert_eq!(m.particles().len(), n0);
+    let p = m.particles();
     assert!((0..p.n_mobile).all(|a| p.z[a] > 0.0 && p.z[a] < 0.2));
     let col = m.column().expect("coupled");
     assert!(col.velocity().iter().all(|u| u.is_finite() && *u >= 0.0));
     // the DRW eddies of the particles run out of phase (random first duration), so that
     // the particles do not all redraw at the same step
-    let nm = m.dem.p.n_mobile;
-    let mut left: Vec<u64> = m.forces.left[..nm].iter().map(|t| t.to_bits()).collect();
+    let nm = m.particles().n_mobile;
+    let mut left: Vec<u64> = m.forces().eddy_clocks()[..nm].iter().map(|t| t.to_bits()).collect();
     left.sort_unstable();
     left.dedup();
     assert!(left.len() > nm / 2, "{} distinct eddy clocks for {nm} particles", left.len());
-    assert!(m.forces.left[..nm].iter().all(|t| t.is_finite()));
+    assert!(m.forces().eddy_clocks()[..nm].iter().all(|t| t.is_finite()));
 }
 
 #[test]
@@ -246,7 +247,7 @@ fn hertz_collision_restitution_is_close_to_e() {
         );
         let mut m = model(&s);
         run_to_end(&mut m);
-        let p = &m.dem.p;
+        let p = m.particles();
         let measured = (p.vx[1] - p.vx[0]) / 0.2;
         assert!((measured / e - 1.0).abs() < 0.03, "e = {e}: measured {measured}");
     }
@@ -273,23 +274,66 @@ fn bad_keys_are_refused_with_file_key_and_range() {
     }
 }
 
+fn tmp_out(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("saltus_lagrangian_{name}_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
 #[test]
-fn a_run_that_breaks_down_names_time_particle_and_field() {
-    let s = scene("verification/dem_settling.toml", &[]);
+fn a_run_that_breaks_down_names_time_particle_and_field_and_keeps_its_outputs() {
+    // a pressure gradient of 1e9 Pa/m (the largest a scene accepts) drives the sphere through still water beyond any
+    // terminal velocity (about 1400 m/s at C_D = 0.4): the speed check stops the run at
+    // the first fluid update past 100 m/s
+    let s = scene("verification/dem_settling.toml", &["physics.pressure_gradient=1e9"]);
+    let out = tmp_out("unstable");
+    let outcome = saltus_solvers::run(&s, &out, &mut Quiet).expect("a breakdown is an outcome, not an error");
+    let b = outcome.ending.breakdown().expect("unstable");
+    assert_eq!(b.place, Place::Particle { index: 0 });
+    assert_eq!(b.field, "|v|");
+    assert!(b.value > 100.0 && b.value.is_finite() && b.time > 0.0, "{b}");
+    assert!(b.to_string().contains("particle 0"), "{b}");
+    // the last state is reported and written; the summary says why it stopped
+    let summary = &outcome.report.summary;
+    assert_eq!((summary.ending.as_str(), summary.sim_time_s), ("unstable", b.time));
+    assert_eq!(summary.error.as_deref(), Some(b.to_string().as_str()));
+    let written = std::fs::read_to_string(out.join("summary.json")).expect("summary written");
+    assert!(written.contains("\"unstable\"") && written.contains("particle 0"), "{written}");
+    assert!(out.join("profiles.csv").is_file());
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn the_deposition_is_a_phase_of_the_run_bounded_by_max_steps() {
+    let s = small_bed(&["solver.lagrangian.max_steps=50"]);
     let mut m = model(&s);
-    m.start().expect("start");
-    assert!(m.advance().is_none());
-    m.dem.p.vz[0] = f64::NAN;
-    match m.advance() {
-        Some(Ending::Unstable(b)) => {
-            let text = b.to_string();
-            assert!(text.contains("particle 0") && text.contains("t = "), "{text}");
-            // the NaN spreads through the drag to every component within the step
-            assert!(["x", "y", "z", "v_x", "v_y", "v_z"].contains(&b.field.as_str()), "{}", b.field);
-            assert!(b.value.is_nan() && b.time > 0.0);
-        }
-        other => panic!("expected a breakdown, got {other:?}"),
-    }
+    assert_eq!(m.progress().phase, Phase::Setup);
+    let mut phases = Vec::new();
+    let mut watch = |p: &saltus_solvers::Progress| {
+        phases.push((p.phase, p.steps));
+        saltus_solvers::run::Control::Continue
+    };
+    let (ending, _) = drive(&mut m, &mut watch);
+    assert_eq!(ending, Ending::MaxSteps);
+    assert_eq!((m.settle_steps(), m.steps()), (50, 0));
+    // the observer saw the deposition advance, period by period, up to the cap
+    assert!(phases.len() > 1 && phases.iter().all(|(p, _)| *p == Phase::Setup), "{phases:?}");
+    assert_eq!(phases.last(), Some(&(Phase::Setup, 50)));
+    // nothing was averaged: the report has no transport figures rather than zeros
+    let r = m.report(&ending, 0.0);
+    assert_eq!((r.summary.qs, r.summary.qs_star, r.summary.shields, r.summary.bed_height), (None, None, None, None));
+    assert_eq!(r.profiles.columns.len(), 1, "z only");
+}
+
+#[test]
+fn an_empty_averaging_window_is_refused_when_the_scene_is_loaded() {
+    let set: Vec<String> =
+        ["solver.type=lagrangian", "solver.lagrangian.stats_start=0.2", "solver.lagrangian.end_time=0.1"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+    let e = Scene::from_file_with(case("chassagne2023/case01.toml"), &set).expect_err("refused").to_string();
+    assert!(e.contains("case01.toml") && e.contains("solver.lagrangian.stats_start"), "{e}");
 }
 
 #[test]
@@ -305,9 +349,9 @@ fn k_omega_column_feeds_the_eddy_interaction_model() {
         "closures.fluctuation={type=\"eim\"}",
     ]);
     let mut m = model(&s);
-    m.start().expect("start");
+    m.deposit().expect("deposition");
     while m.time() < 0.1 {
-        if let Some(end) = m.advance() {
+        if let Some(end) = m.step() {
             panic!("ended before 0.1 s: {end:?}");
         }
     }
@@ -316,8 +360,8 @@ fn k_omega_column_feeds_the_eddy_interaction_model() {
     assert!(k.iter().all(|v| v.is_finite() && *v >= 0.0) && omega.iter().all(|v| v.is_finite() && *v > 0.0));
     let kmax = k.iter().fold(0.0f64, |a, &b| a.max(b));
     assert!(kmax > 0.0, "no turbulence after 0.1 s");
-    let nm = m.dem.p.n_mobile;
-    let fl = &m.forces.fluct[..nm];
+    let nm = m.particles().n_mobile;
+    let fl = &m.forces().fluctuations()[..nm];
     let moved = fl.iter().filter(|f| f.iter().any(|c| *c != 0.0)).count();
     assert!(moved > nm / 2, "{moved} of {nm} particles drew a fluctuation");
     let bound = 6.0 * (2.0 * kmax / 3.0).sqrt();

@@ -302,6 +302,19 @@ impl LagrangianSettings {
         if self.initial == Initial::Bed && self.settle_time.is_none() {
             return Err(need("settle_time", "the default needs grains heavier than the fluid under gravity"));
         }
+        if self.fluid != FluidMode::Off && self.end_time <= self.stats_start {
+            // the averages would hold no sample: refused before the work rather than
+            // reported as all-zero profiles after it
+            return Err(key_error(
+                f,
+                &p("stats_start"),
+                format!(
+                    "{} s is not before solver.lagrangian.end_time = {} s, so the run would average nothing; lower it or raise the end time",
+                    crate::param::number(self.stats_start),
+                    crate::param::number(self.end_time)
+                ),
+            ));
+        }
         let cut = c.d * (1.0 + self.skin);
         if self.bottom == Bottom::Periodic {
             check(f, &p("height"), self.height, ParamRange::closed(2.0 * cut + 1e-12, MAX_SIDE_DIAMETERS * c.d))?;

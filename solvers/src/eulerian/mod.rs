@@ -101,7 +101,3 @@ pub use config::{Config, Domain, Settings, Top};
 pub use report::Derived;
 pub use rheology::{Elastic, Rheology};
 pub use solver::{Eulerian, PHI_FLOOR};
-
-// the Lagrangian solver's observer still takes the legacy progress record until it
-// implements `run::Stepper`
-pub(crate) use crate::Progress;

@@ -96,12 +96,12 @@ impl Eulerian<'_> {
         let summary = Summary {
             scene: scene.meta.name.clone(),
             solver: "eulerian".into(),
-            qs,
-            qs_star: scales.qs_star(qs),
-            shields: scales.shields(tau_max),
+            qs: output::finite(qs),
+            qs_star: output::finite(scales.qs_star(qs)),
+            shields: output::finite(scales.shields(tau_max)),
             shields_nominal: scales.shields_nominal,
-            bed_height: z1,
-            transport_layer_thickness: z99 - z1,
+            bed_height: output::finite(z1),
+            transport_layer_thickness: output::finite(z99 - z1),
             steady: matches!(ending, Ending::Steady),
             ending: ending.name().into(),
             sim_time_s: self.time(),
@@ -109,30 +109,30 @@ impl Eulerian<'_> {
             rejected_steps: Some(self.rejected_steps()),
             wall_time_s: wall,
             mass_error: Some(self.mass_error()),
-            residual: self.residual(),
+            residual: output::finite(self.residual()),
             cells: self.len(),
-            error: ending.breakdown().map(|b| b.to_string()),
+            error: ending.error(),
             particles: None,
             particle_steps_per_s: None,
             shields_turbulent: None,
         };
         // a column without moving grains (clear water) has no transport levels
-        let layers = if z1.is_finite() && summary.transport_layer_thickness.is_finite() {
-            format!("bed surface {z1:.4} m, transport layer {:.4} m", summary.transport_layer_thickness)
-        } else {
-            "no sediment transport".to_string()
+        let layers = match (summary.bed_height, summary.transport_layer_thickness) {
+            (Some(z1), Some(t)) => format!("bed surface {z1:.4} m, transport layer {t:.4} m"),
+            _ => "no sediment transport".to_string(),
         };
+        let figure = |x: Option<f64>, f: fn(f64) -> String| x.map_or_else(|| "undefined".to_string(), f);
         let text = format!(
-            "{}: {} after {:.3} s simulated ({} steps, {} rejected) in {:.3} s wall time; qs* = {:.4} (qs = {:.4e} m^2/s), Shields {:.3}, {layers}, mass error {:.1e}",
+            "{}: {} after {:.3} s simulated ({} steps, {} rejected) in {:.3} s wall time; qs* = {} (qs = {:.4e} m^2/s), Shields {}, {layers}, mass error {:.1e}",
             scene.meta.name,
             ending.name(),
             summary.sim_time_s,
             summary.steps,
             self.rejected_steps(),
             wall,
-            summary.qs_star,
+            figure(summary.qs_star, |v| format!("{v:.4}")),
             qs,
-            summary.shields,
+            figure(summary.shields, |v| format!("{v:.3}")),
             self.mass_error()
         );
         RunReport { profiles: p, summary, text }

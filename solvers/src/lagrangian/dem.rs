@@ -17,9 +17,6 @@
 //! their working size; every sum is taken in a fixed order, so the state after a step
 //! does not depend on the number of threads.
 
-use std::marker::PhantomData;
-use std::ops::Range;
-
 use rayon::prelude::*;
 
 use super::contact::{contact_force, cross, ContactInput, ContactLaw};
@@ -27,7 +24,9 @@ use super::neighbours::NeighbourList;
 use super::particles::{Box3, Particles};
 
 /// Particles per parallel work item: large enough to amortise scheduling, small enough
-/// to balance two cores.
+/// to balance two cores. Every parallel loop of the DEM cuts its arrays into chunks of
+/// this fixed size (never into one chunk per thread), so the work items, and with them
+/// every rounding, are the same whatever the number of threads.
 pub const CHUNK: usize = 256;
 
 /// A flat wall at `position` along `axis`; particles live on the side `sign` (+1: above).
@@ -44,70 +43,34 @@ pub struct Wall {
 /// Most walls a scene can have (bottom and two side walls).
 pub const MAX_WALLS: usize = 3;
 
-/// A mutable slice handed out in disjoint chunks to parallel workers.
-pub(crate) struct Disjoint<'a, T> {
-    ptr: *mut T,
-    len: usize,
-    _m: PhantomData<&'a mut [T]>,
-}
-
-// SAFETY: `Disjoint` only hands out sub-slices through `chunk`, whose callers guarantee the
-// ranges are disjoint; T: Send makes moving those sub-slices across threads sound.
-unsafe impl<T: Send> Send for Disjoint<'_, T> {}
-unsafe impl<T: Send> Sync for Disjoint<'_, T> {}
-
-impl<'a, T> Disjoint<'a, T> {
-    pub(crate) fn new(s: &'a mut [T]) -> Self {
-        Self { ptr: s.as_mut_ptr(), len: s.len(), _m: PhantomData }
-    }
-    /// # Safety
-    /// No two live chunks may overlap.
-    #[allow(clippy::mut_from_ref)]
-    pub(crate) unsafe fn chunk(&self, r: Range<usize>) -> &'a mut [T] {
-        assert!(r.start <= r.end && r.end <= self.len);
-        std::slice::from_raw_parts_mut(self.ptr.add(r.start), r.end - r.start)
-    }
-}
-
-/// Fixed chunks of `0..n` in parallel; each range is visited exactly once.
-pub(crate) fn par_ranges<F: Fn(Range<usize>) + Sync + Send>(n: usize, f: F) {
-    let chunks = n.div_ceil(CHUNK);
-    (0..chunks).into_par_iter().for_each(|c| f(c * CHUNK..((c + 1) * CHUNK).min(n)));
-}
-
-/// As [`par_ranges`], and whether `f` returned true for any range (every range runs).
-pub(crate) fn par_ranges_any<F: Fn(Range<usize>) -> bool + Sync + Send>(n: usize, f: F) -> bool {
-    let chunks = n.div_ceil(CHUNK);
-    (0..chunks).into_par_iter().map(|c| f(c * CHUNK..((c + 1) * CHUNK).min(n))).reduce(|| false, |a, b| a || b)
-}
-
-/// The DEM state and its parameters.
+/// The DEM state and its parameters. The coupled solver of this module reaches into it;
+/// everyone else reads it through its methods.
 #[derive(Clone, Debug)]
 pub struct Dem {
     /// particles
-    pub p: Particles,
+    pub(super) p: Particles,
     /// periodic box
-    pub bx: Box3,
+    bx: Box3,
     /// contact law
-    pub law: ContactLaw,
+    law: ContactLaw,
     /// flat walls
-    pub walls: Vec<Wall>,
+    walls: Vec<Wall>,
     /// body acceleration of mobile particles: gravity and buoyancy (m/s^2)
-    pub body: [f64; 3],
+    pub(super) body: [f64; 3],
     /// time step (s)
-    pub dt: f64,
+    dt: f64,
     /// simulated time (s)
-    pub time: f64,
+    pub(super) time: f64,
     /// steps taken
-    pub steps: u64,
+    steps: u64,
     /// neighbour list and pair histories
-    pub list: NeighbourList,
+    list: NeighbourList,
     /// external force per mobile particle (N), set by the caller before each step
-    pub ext: [Vec<f64>; 3],
+    pub(super) ext: [Vec<f64>; 3],
     /// external torque per mobile particle (N m)
-    pub ext_torque: [Vec<f64>; 3],
+    ext_torque: [Vec<f64>; 3],
     /// history of the wall contacts of each mobile particle
-    pub wall_hist: Vec<[[f64; 3]; MAX_WALLS]>,
+    wall_hist: Vec<[[f64; 3]; MAX_WALLS]>,
     pair_f: Vec<[f64; 3]>,
     pair_t: Vec<[f64; 3]>,
     /// a particle moved more than half the skin since the last build (set by the
@@ -136,6 +99,36 @@ impl Dem {
             pair_t: Vec::new(),
             rebuild_due: true,
         }
+    }
+
+    /// Particles.
+    pub fn particles(&self) -> &Particles {
+        &self.p
+    }
+    /// Time step (s).
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+    /// Simulated time (s).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+    /// Neighbour list and pair histories.
+    pub fn list(&self) -> &NeighbourList {
+        &self.list
+    }
+    /// Body acceleration of the mobile particles (m/s^2).
+    pub fn body(&self) -> [f64; 3] {
+        self.body
+    }
+    /// External (fluid) force per mobile particle (N), one slice per component, for the
+    /// caller to fill before [`Dem::step`].
+    pub fn external_force_mut(&mut self) -> &mut [Vec<f64>; 3] {
+        &mut self.ext
     }
 
     /// After particles were added, removed or renumbered: resize the per-particle buffers
@@ -171,37 +164,39 @@ impl Dem {
         let law = &self.law;
         let dt = self.dt;
         let l = &mut self.list;
-        let hist = Disjoint::new(&mut l.hist);
         let (li, lj, shift, sqrt_m, r_eff) = (&l.i, &l.j, &l.shift, &l.sqrt_m, &l.r_eff);
-        let pf = Disjoint::new(&mut self.pair_f);
-        let pt = Disjoint::new(&mut self.pair_t);
-        par_ranges(np, |r| {
-            // SAFETY: par_ranges visits disjoint ranges.
-            let (hist, pf, pt) = unsafe { (hist.chunk(r.clone()), pf.chunk(r.clone()), pt.chunk(r.clone())) };
-            for (k, q) in r.enumerate() {
-                let (a, b) = (li[q] as usize, lj[q] as usize);
-                let s = shift[q];
-                let d = [p.x[b] + s[0] - p.x[a], p.y[b] + s[1] - p.y[a], p.z[b] + s[2] - p.z[a]];
-                let (ra, rb) = (p.radius[a], p.radius[b]);
-                let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                let reach = ra + rb;
-                if r2 >= reach * reach {
-                    hist[k] = [0.0; 3];
-                    pf[k] = [0.0; 3];
-                    pt[k] = [0.0; 3];
-                    continue;
+        // each pair owns its history and its output slots: chunks of the three arrays
+        // zipped, pair q = chunk start + k
+        (l.hist.par_chunks_mut(CHUNK), self.pair_f.par_chunks_mut(CHUNK), self.pair_t.par_chunks_mut(CHUNK))
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(c, (hist, pf, pt))| {
+                let o = c * CHUNK;
+                for (k, ((h, f_out), t_out)) in hist.iter_mut().zip(pf.iter_mut()).zip(pt.iter_mut()).enumerate() {
+                    let q = o + k;
+                    let (a, b) = (li[q] as usize, lj[q] as usize);
+                    let s = shift[q];
+                    let d = [p.x[b] + s[0] - p.x[a], p.y[b] + s[1] - p.y[a], p.z[b] + s[2] - p.z[a]];
+                    let (ra, rb) = (p.radius[a], p.radius[b]);
+                    let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                    let reach = ra + rb;
+                    if r2 >= reach * reach {
+                        *h = [0.0; 3];
+                        *f_out = [0.0; 3];
+                        *t_out = [0.0; 3];
+                        continue;
+                    }
+                    let dist = r2.sqrt();
+                    let n = [d[0] / dist, d[1] / dist, d[2] / dist];
+                    let arm = [ra * p.wx[a] + rb * p.wx[b], ra * p.wy[a] + rb * p.wy[b], ra * p.wz[a] + rb * p.wz[b]];
+                    let spin = cross(arm, n);
+                    let v_rel = [p.vx[b] - p.vx[a] - spin[0], p.vy[b] - p.vy[a] - spin[1], p.vz[b] - p.vz[a] - spin[2]];
+                    let c = ContactInput { n, delta: reach - dist, v_rel, sqrt_m: sqrt_m[q], r_eff: r_eff[q] };
+                    let f = contact_force(law, &c, h, dt);
+                    *f_out = f;
+                    *t_out = cross(n, f);
                 }
-                let dist = r2.sqrt();
-                let n = [d[0] / dist, d[1] / dist, d[2] / dist];
-                let arm = [ra * p.wx[a] + rb * p.wx[b], ra * p.wy[a] + rb * p.wy[b], ra * p.wz[a] + rb * p.wz[b]];
-                let spin = cross(arm, n);
-                let v_rel = [p.vx[b] - p.vx[a] - spin[0], p.vy[b] - p.vy[a] - spin[1], p.vz[b] - p.vz[a] - spin[2]];
-                let c = ContactInput { n, delta: reach - dist, v_rel, sqrt_m: sqrt_m[q], r_eff: r_eff[q] };
-                let f = contact_force(law, &c, &mut hist[k], dt);
-                pf[k] = f;
-                pt[k] = cross(n, f);
-            }
-        });
+            });
     }
 
     /// Leapfrog update of the mobile particles; true when one of them moved more than half
@@ -218,92 +213,80 @@ impl Dem {
         let ext_t = &self.ext_torque;
         let p = &mut self.p;
         let (radius, inv_m, inv_i) = (&p.radius, &p.inv_mass, &p.inv_inertia);
-        let x = Disjoint::new(&mut p.x[..nm]);
-        let y = Disjoint::new(&mut p.y[..nm]);
-        let z = Disjoint::new(&mut p.z[..nm]);
-        let vx = Disjoint::new(&mut p.vx[..nm]);
-        let vy = Disjoint::new(&mut p.vy[..nm]);
-        let vz = Disjoint::new(&mut p.vz[..nm]);
-        let wx = Disjoint::new(&mut p.wx[..nm]);
-        let wy = Disjoint::new(&mut p.wy[..nm]);
-        let wz = Disjoint::new(&mut p.wz[..nm]);
-        let wh = Disjoint::new(&mut self.wall_hist);
         let x0 = &l.x0;
         let lim = 0.25 * l.skin * l.skin;
-        par_ranges_any(nm, |r| {
-            let o = r.start;
-            // SAFETY: par_ranges visits disjoint ranges.
-            let (x, y, z, vx, vy, vz, wx, wy, wz, wh) = unsafe {
-                (
-                    x.chunk(r.clone()),
-                    y.chunk(r.clone()),
-                    z.chunk(r.clone()),
-                    vx.chunk(r.clone()),
-                    vy.chunk(r.clone()),
-                    vz.chunk(r.clone()),
-                    wx.chunk(r.clone()),
-                    wy.chunk(r.clone()),
-                    wz.chunk(r.clone()),
-                    wh.chunk(r.clone()),
-                )
-            };
-            let mut moved = false;
-            for a in r {
-                let k = a - o;
-                let ra = radius[a];
-                let mut f = [ext[0][a], ext[1][a], ext[2][a]];
-                let mut t = [ext_t[0][a], ext_t[1][a], ext_t[2][a]];
-                for q in l.start[a]..l.start[a + 1] {
-                    let (fq, tq) = (pf[q], pt[q]);
-                    for c in 0..3 {
-                        f[c] += fq[c];
-                        t[c] += ra * tq[c];
+        fn chunks(v: &mut [f64], nm: usize) -> rayon::slice::ChunksMut<'_, f64> {
+            v[..nm].par_chunks_mut(CHUNK)
+        }
+        // the positions, velocities, spins and wall histories of a chunk of mobile
+        // particles, zipped: particle a = chunk start + k
+        let pos = (chunks(&mut p.x, nm), chunks(&mut p.y, nm), chunks(&mut p.z, nm));
+        let vel = (chunks(&mut p.vx, nm), chunks(&mut p.vy, nm), chunks(&mut p.vz, nm));
+        let spin = (chunks(&mut p.wx, nm), chunks(&mut p.wy, nm), chunks(&mut p.wz, nm));
+        let wall_hist = self.wall_hist[..nm].par_chunks_mut(CHUNK);
+        (pos.into_par_iter(), vel.into_par_iter(), spin.into_par_iter(), wall_hist)
+            .into_par_iter()
+            .enumerate()
+            .map(|(c, ((x, y, z), (vx, vy, vz), (wx, wy, wz), wh))| {
+                let o = c * CHUNK;
+                let mut moved = false;
+                for k in 0..x.len() {
+                    let a = o + k;
+                    let ra = radius[a];
+                    let mut f = [ext[0][a], ext[1][a], ext[2][a]];
+                    let mut t = [ext_t[0][a], ext_t[1][a], ext_t[2][a]];
+                    for q in l.start[a]..l.start[a + 1] {
+                        let (fq, tq) = (pf[q], pt[q]);
+                        for c in 0..3 {
+                            f[c] += fq[c];
+                            t[c] += ra * tq[c];
+                        }
                     }
+                    for &q in &l.rev[l.rev_start[a]..l.rev_start[a + 1]] {
+                        let (fq, tq) = (pf[q as usize], pt[q as usize]);
+                        for c in 0..3 {
+                            f[c] -= fq[c];
+                            t[c] += ra * tq[c];
+                        }
+                    }
+                    let pos = [x[k], y[k], z[k]];
+                    for (w, wall) in walls.iter().enumerate() {
+                        let gap = (pos[wall.axis] - wall.position) * wall.sign;
+                        let delta = ra - gap;
+                        let h = &mut wh[k][w];
+                        if delta <= 0.0 {
+                            *h = [0.0; 3];
+                            continue;
+                        }
+                        let mut n = [0.0; 3];
+                        n[wall.axis] = -wall.sign;
+                        let spin = cross([ra * wx[k], ra * wy[k], ra * wz[k]], n);
+                        let v_rel = [-vx[k] - spin[0], -vy[k] - spin[1], -vz[k] - spin[2]];
+                        let c = ContactInput { n, delta, v_rel, sqrt_m: (1.0 / inv_m[a]).sqrt(), r_eff: ra };
+                        let fw = contact_force(law, &c, h, dt);
+                        let tw = cross(n, fw);
+                        for c in 0..3 {
+                            f[c] += fw[c];
+                            t[c] += ra * tw[c];
+                        }
+                    }
+                    let im = inv_m[a];
+                    let ii = inv_i[a];
+                    vx[k] += (f[0] * im + body[0]) * dt;
+                    vy[k] += (f[1] * im + body[1]) * dt;
+                    vz[k] += (f[2] * im + body[2]) * dt;
+                    wx[k] += t[0] * ii * dt;
+                    wy[k] += t[1] * ii * dt;
+                    wz[k] += t[2] * ii * dt;
+                    x[k] += vx[k] * dt;
+                    y[k] += vy[k] * dt;
+                    z[k] += vz[k] * dt;
+                    let a0 = x0[a];
+                    moved |= (x[k] - a0[0]).powi(2) + (y[k] - a0[1]).powi(2) + (z[k] - a0[2]).powi(2) > lim;
                 }
-                for &q in &l.rev[l.rev_start[a]..l.rev_start[a + 1]] {
-                    let (fq, tq) = (pf[q as usize], pt[q as usize]);
-                    for c in 0..3 {
-                        f[c] -= fq[c];
-                        t[c] += ra * tq[c];
-                    }
-                }
-                let pos = [x[k], y[k], z[k]];
-                for (w, wall) in walls.iter().enumerate() {
-                    let gap = (pos[wall.axis] - wall.position) * wall.sign;
-                    let delta = ra - gap;
-                    let h = &mut wh[k][w];
-                    if delta <= 0.0 {
-                        *h = [0.0; 3];
-                        continue;
-                    }
-                    let mut n = [0.0; 3];
-                    n[wall.axis] = -wall.sign;
-                    let spin = cross([ra * wx[k], ra * wy[k], ra * wz[k]], n);
-                    let v_rel = [-vx[k] - spin[0], -vy[k] - spin[1], -vz[k] - spin[2]];
-                    let c = ContactInput { n, delta, v_rel, sqrt_m: (1.0 / inv_m[a]).sqrt(), r_eff: ra };
-                    let fw = contact_force(law, &c, h, dt);
-                    let tw = cross(n, fw);
-                    for c in 0..3 {
-                        f[c] += fw[c];
-                        t[c] += ra * tw[c];
-                    }
-                }
-                let im = inv_m[a];
-                let ii = inv_i[a];
-                vx[k] += (f[0] * im + body[0]) * dt;
-                vy[k] += (f[1] * im + body[1]) * dt;
-                vz[k] += (f[2] * im + body[2]) * dt;
-                wx[k] += t[0] * ii * dt;
-                wy[k] += t[1] * ii * dt;
-                wz[k] += t[2] * ii * dt;
-                x[k] += vx[k] * dt;
-                y[k] += vy[k] * dt;
-                z[k] += vz[k] * dt;
-                let a0 = x0[a];
-                moved |= (x[k] - a0[0]).powi(2) + (y[k] - a0[1]).powi(2) + (z[k] - a0[2]).powi(2) > lim;
-            }
-            moved
-        })
+                moved
+            })
+            .reduce(|| false, |a, b| a || b)
     }
 
     /// Elastic energy stored in the normal springs of the linear law (J), for energy

@@ -31,7 +31,9 @@ use rand::Rng as _;
 use saltus_core::rng::{stream, Rng};
 use saltus_core::{DragLaw, FlowScales, Fluctuation, Hindrance, ParticleSlip, TurbulencePoint};
 
-use super::dem::{par_ranges, Disjoint};
+use rayon::prelude::*;
+
+use super::dem::CHUNK;
 use super::particles::Particles;
 
 /// Fluid fields the particles see, on the column's cells (uniform grid from z = `base`).
@@ -127,21 +129,21 @@ pub struct DragModels<'a> {
 #[derive(Clone, Debug)]
 pub struct FluidForces {
     /// fluid density (kg/m^3)
-    pub rho_f: f64,
+    pub(super) rho_f: f64,
     /// fluid viscosity (m^2/s)
-    pub nu_f: f64,
+    pub(super) nu_f: f64,
     /// particle density (kg/m^3)
-    pub rho_p: f64,
+    pub(super) rho_p: f64,
     /// drag coefficient k_p with F = k_p u_r (kg/s), of the last evaluation
-    pub k: Vec<f64>,
+    pub(super) k: Vec<f64>,
     /// streamwise relative velocity u_r,x of the last evaluation (m/s)
-    pub urx: Vec<f64>,
+    pub(super) urx: Vec<f64>,
     /// fluctuation velocity of each particle (m/s)
-    pub fluct: Vec<[f64; 3]>,
+    pub(super) fluct: Vec<[f64; 3]>,
     /// time left before the next draw (s); -inf before the first draw
-    pub left: Vec<f64>,
+    pub(super) left: Vec<f64>,
     /// redraw delay when the closure gives no finite duration (s): the fluid period
-    pub fallback_period: f64,
+    pub(super) fallback_period: f64,
     /// no finite eddy drawn yet (the next one gets a random phase)
     fresh: Vec<bool>,
     rng: Vec<Rng>,
@@ -191,117 +193,110 @@ impl FluidForces {
     ) {
         let (rho_f, nu_f, rho_p, fallback) = (self.rho_f, self.nu_f, self.rho_p, self.fallback_period);
         let nm = p.n_mobile;
-        let k = Disjoint::new(&mut self.k);
-        let urx = Disjoint::new(&mut self.urx);
-        let fluct = Disjoint::new(&mut self.fluct);
-        let left = Disjoint::new(&mut self.left);
-        let fresh = Disjoint::new(&mut self.fresh);
-        let rng = Disjoint::new(&mut self.rng);
-        let re = Disjoint::new(&mut self.re);
-        let re_star = Disjoint::new(&mut self.re_star);
-        let cd = Disjoint::new(&mut self.cd);
-        let hind = Disjoint::new(&mut self.hind);
-        let phi_p = Disjoint::new(&mut self.phi_p);
-        let ur = Disjoint::new(&mut self.ur);
+        let n_out = upto.min(nm);
+        // per-particle state and scratch cut into the same fixed chunks, zipped: particle
+        // a = chunk start + i; the output slots exist for mobile particles only, so the
+        // chunks past them get none
+        let state = (
+            self.k[..upto].par_chunks_mut(CHUNK),
+            self.urx[..upto].par_chunks_mut(CHUNK),
+            self.fluct[..upto].par_chunks_mut(CHUNK),
+            self.left[..upto].par_chunks_mut(CHUNK),
+            self.fresh[..upto].par_chunks_mut(CHUNK),
+            self.rng[..upto].par_chunks_mut(CHUNK),
+        );
+        let scratch = (
+            self.re[..upto].par_chunks_mut(CHUNK),
+            self.re_star[..upto].par_chunks_mut(CHUNK),
+            self.cd[..upto].par_chunks_mut(CHUNK),
+            self.hind[..upto].par_chunks_mut(CHUNK),
+            self.phi_p[..upto].par_chunks_mut(CHUNK),
+            self.ur[..upto].par_chunks_mut(CHUNK),
+        );
         let [ox, oy, oz] = out;
-        let (ox, oy, oz) = (Disjoint::new(&mut ox[..]), Disjoint::new(&mut oy[..]), Disjoint::new(&mut oz[..]));
-        par_ranges(upto, |r| {
-            let o = r.start;
-            // SAFETY: par_ranges visits disjoint ranges.
-            let (k, urx, fluct, left, fresh, rng, re, re_star, cd, hind, phi_p, ur) = unsafe {
-                (
-                    k.chunk(r.clone()),
-                    urx.chunk(r.clone()),
-                    fluct.chunk(r.clone()),
-                    left.chunk(r.clone()),
-                    fresh.chunk(r.clone()),
-                    rng.chunk(r.clone()),
-                    re.chunk(r.clone()),
-                    re_star.chunk(r.clone()),
-                    cd.chunk(r.clone()),
-                    hind.chunk(r.clone()),
-                    phi_p.chunk(r.clone()),
-                    ur.chunk(r.clone()),
-                )
-            };
-            for a in r.clone() {
-                let i = a - o;
-                let z = p.z[a];
-                let cell = field.cell(z);
-                let mobile = a < nm;
-                if let (Some(fl), true) = (models.fluctuation, mobile) {
-                    left[i] -= dt;
-                    if left[i] <= 0.0 {
-                        let [kf, wf] = &field.k_omega;
-                        let tp = TurbulencePoint {
-                            k: kf.get(cell).copied().unwrap_or(0.0),
-                            omega: wf.get(cell).copied().unwrap_or(0.0),
-                            nu_t: field.nu_t[cell],
-                            reynolds_stress: field.reynolds[cell],
-                        };
-                        // slip and response time of the last evaluation, for the eddy
-                        // crossing time of the eddy interaction model (Cheng eq 37)
-                        let [ax, ay, az] = ur[i];
-                        let slip = (ax * ax + ay * ay + az * az).sqrt();
-                        let d = 2.0 * p.radius[a];
-                        let response_time = if slip > 0.0 && cd[i] > 0.0 {
-                            4.0 * rho_p * d / (3.0 * rho_f * cd[i] * slip)
-                        } else {
-                            f64::INFINITY
-                        };
-                        let ps = ParticleSlip { slip, response_time };
-                        let draw = fl.draw(&tp, &ps, &field.scales, &mut rng[i]);
-                        fluct[i] = draw.u;
-                        left[i] = if !draw.duration.is_finite() {
-                            // no turnover time yet (flow at rest): try again at the next fluid
-                            // update, still without a phase
-                            fallback
-                        } else if fresh[i] {
-                            // first finite eddy: random phase, so that particles do not redraw
-                            // in step
-                            fresh[i] = false;
-                            draw.duration * rng[i].gen::<f64>()
-                        } else {
-                            draw.duration
-                        };
+        let with_out = n_out.div_ceil(CHUNK);
+        let without = upto.div_ceil(CHUNK) - with_out;
+        let outputs =
+            (ox[..n_out].par_chunks_mut(CHUNK), oy[..n_out].par_chunks_mut(CHUNK), oz[..n_out].par_chunks_mut(CHUNK))
+                .into_par_iter()
+                .map(Some)
+                .chain((0..without).into_par_iter().map(|_| None));
+        (state.into_par_iter(), scratch.into_par_iter(), outputs).into_par_iter().enumerate().for_each(
+            |(c, ((k, urx, fluct, left, fresh, rng), (re, re_star, cd, hind, phi_p, ur), out))| {
+                let o = c * CHUNK;
+                let n = k.len();
+                for i in 0..n {
+                    let a = o + i;
+                    let z = p.z[a];
+                    let cell = field.cell(z);
+                    let mobile = a < nm;
+                    if let (Some(fl), true) = (models.fluctuation, mobile) {
+                        left[i] -= dt;
+                        if left[i] <= 0.0 {
+                            let [kf, wf] = &field.k_omega;
+                            let tp = TurbulencePoint {
+                                k: kf.get(cell).copied().unwrap_or(0.0),
+                                omega: wf.get(cell).copied().unwrap_or(0.0),
+                                nu_t: field.nu_t[cell],
+                                reynolds_stress: field.reynolds[cell],
+                            };
+                            // slip and response time of the last evaluation, for the eddy
+                            // crossing time of the eddy interaction model (Cheng eq 37)
+                            let [ax, ay, az] = ur[i];
+                            let slip = (ax * ax + ay * ay + az * az).sqrt();
+                            let d = 2.0 * p.radius[a];
+                            let response_time = if slip > 0.0 && cd[i] > 0.0 {
+                                4.0 * rho_p * d / (3.0 * rho_f * cd[i] * slip)
+                            } else {
+                                f64::INFINITY
+                            };
+                            let ps = ParticleSlip { slip, response_time };
+                            let draw = fl.draw(&tp, &ps, &field.scales, &mut rng[i]);
+                            fluct[i] = draw.u;
+                            left[i] = if !draw.duration.is_finite() {
+                                // no turnover time yet (flow at rest): try again at the next
+                                // fluid update, still without a phase
+                                fallback
+                            } else if fresh[i] {
+                                // first finite eddy: random phase, so that particles do not
+                                // redraw in step
+                                fresh[i] = false;
+                                draw.duration * rng[i].gen::<f64>()
+                            } else {
+                                draw.duration
+                            };
+                        }
+                    }
+                    let u = [field.velocity(z) + fluct[i][0] - p.vx[a], fluct[i][1] - p.vy[a], fluct[i][2] - p.vz[a]];
+                    let d = 2.0 * p.radius[a];
+                    let speed = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+                    re[i] = speed * d / nu_f;
+                    re_star[i] = (field.re_ratio[cell] * re[i]).max(1e-12);
+                    phi_p[i] = field.phi[cell];
+                    ur[i] = u;
+                }
+                models.drag.cd_batch(re_star, cd);
+                if field.hindrance.is_empty() {
+                    models.hindrance.factor_batch(phi_p, re, hind);
+                } else {
+                    for (i, h) in hind.iter_mut().enumerate() {
+                        *h = field.hindrance[field.cell(p.z[o + i])];
                     }
                 }
-                let u = [field.velocity(z) + fluct[i][0] - p.vx[a], fluct[i][1] - p.vy[a], fluct[i][2] - p.vz[a]];
-                let d = 2.0 * p.radius[a];
-                let speed = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
-                re[i] = speed * d / nu_f;
-                re_star[i] = (field.re_ratio[cell] * re[i]).max(1e-12);
-                phi_p[i] = field.phi[cell];
-                ur[i] = u;
-            }
-            let n = r.len();
-            models.drag.cd_batch(&re_star[..n], &mut cd[..n]);
-            if field.hindrance.is_empty() {
-                models.hindrance.factor_batch(&phi_p[..n], &re[..n], &mut hind[..n]);
-            } else {
-                for (h, a) in hind[..n].iter_mut().zip(r.clone()) {
-                    *h = field.hindrance[field.cell(p.z[a])];
+                for i in 0..n {
+                    let d = 2.0 * p.radius[o + i];
+                    k[i] = std::f64::consts::PI / 8.0 * rho_f * nu_f * d * cd[i] * re[i] * hind[i];
+                    urx[i] = ur[i][0];
                 }
-            }
-            // SAFETY: disjoint ranges; only mobile particles have output slots.
-            let m_end = r.end.min(nm);
-            let (ox, oy, oz) = if o < m_end {
-                unsafe { (ox.chunk(o..m_end), oy.chunk(o..m_end), oz.chunk(o..m_end)) }
-            } else {
-                (&mut [][..], &mut [][..], &mut [][..])
-            };
-            for i in 0..n {
-                let d = 2.0 * p.radius[o + i];
-                let kp = std::f64::consts::PI / 8.0 * rho_f * nu_f * d * cd[i] * re[i] * hind[i];
-                k[i] = kp;
-                urx[i] = ur[i][0];
-                if i < ox.len() {
-                    ox[i] = kp * ur[i][0];
-                    oy[i] = kp * ur[i][1];
-                    oz[i] = kp * ur[i][2];
+                if let Some((ox, oy, oz)) = out {
+                    for i in 0..ox.len() {
+                        ox[i] = k[i] * ur[i][0];
+                        oy[i] = k[i] * ur[i][1];
+                        oz[i] = k[i] * ur[i][2];
+                    }
                 }
-            }
-        });
+            },
+        );
     }
 
     /// Restart every fluctuation clock (first draw with a random phase at the next
@@ -310,6 +305,16 @@ impl FluidForces {
         self.left.fill(f64::NEG_INFINITY);
         self.fluct.fill([0.0; 3]);
         self.fresh.fill(true);
+    }
+
+    /// Fluctuation velocity of each particle (m/s).
+    pub fn fluctuations(&self) -> &[[f64; 3]] {
+        &self.fluct
+    }
+
+    /// Time left before each particle's next fluctuation draw (s); -inf before the first.
+    pub fn eddy_clocks(&self) -> &[f64] {
+        &self.left
     }
 
     /// Particle response time m / k_p of particle `a` (s), for diagnostics.

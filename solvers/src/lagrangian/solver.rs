@@ -1,7 +1,10 @@
 //! The coupled run: deposition, then DEM steps with the fluid column solved every fluid
-//! period (Maurin et al. 2015 section II D).
+//! period (Maurin et al. 2015 section II D). The deposition lives in `deposition.rs`, the
+//! driver's view of the run in [`super::stepper`].
 
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 use saltus_core::scene::Scene;
 use saltus_core::{DragLaw, EffectiveViscosity, Error, Hindrance, Turbulence};
@@ -11,90 +14,75 @@ use super::config::{Config, FluidMode, Initial};
 use super::contact::{ContactLaw, ContactModel};
 use super::dem::Dem;
 use super::drag::{DragModels, FluidField, FluidForces};
+use super::particles::Particles;
 use super::setup::{self, Material};
 use super::stats::{Stats, Steady};
 use crate::column::{Closures, ColumnParams, Coupling, FluidColumn, Grid, TopBoundary};
-use crate::eulerian::Progress;
-
-/// Where and why a run stopped: time, particle or cell, field.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Breakdown {
-    /// simulated time (s)
-    pub time: f64,
-    /// what went bad: `particle 12`, `cell 40 (z = 0.01 m)`
-    pub location: String,
-    /// the field
-    pub field: String,
-    /// its value
-    pub value: f64,
-    /// why
-    pub reason: String,
-}
-
-impl std::fmt::Display for Breakdown {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "t = {:.6} s: {} = {:e} at {}: {}", self.time, self.field, self.value, self.location, self.reason)
-    }
-}
-
-/// How a run ended.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Ending {
-    /// the transport rate is steady and `stop_when_steady` is set
-    Steady,
-    /// end time reached
-    EndTime,
-    /// step cap reached
-    MaxSteps,
-    /// a particle or a cell went bad
-    Unstable(Breakdown),
-}
+use crate::run::{Breakdown, Ending, Place};
 
 /// Particle speed beyond which the run is declared unstable (m/s): far above any
 /// bedload or settling velocity, reached only when the time step is too large for the
 /// stiffness.
 pub const MAX_SPEED: f64 = 100.0;
 
-/// The Lagrangian solver of a scene.
+/// What the run is doing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Stage {
+    /// settling the bed under gravity, fluid at rest
+    Deposition,
+    /// the flow
+    Flow,
+}
+
+/// The Lagrangian solver of a scene: the DEM, the fluid column and the statistics. The
+/// driver advances it through [`crate::run::Stepper`]; tests and benches read it through
+/// the methods below.
 pub struct Lagrangian<'a> {
-    cfg: Config,
-    /// DEM state
-    pub dem: Dem,
-    /// drag state
-    pub forces: FluidForces,
-    /// fluid seen by the particles
-    pub field: FluidField,
-    column: Option<FluidColumn>,
+    pub(super) scene: &'a Scene,
+    pub(super) cfg: Config,
+    pub(super) dem: Dem,
+    pub(super) forces: FluidForces,
+    pub(super) field: FluidField,
+    pub(super) column: Option<FluidColumn>,
     viscosity: &'a dyn EffectiveViscosity,
     turbulence: &'a dyn Turbulence,
     drag: &'a dyn DragLaw,
     hindrance: &'a dyn Hindrance,
     fluctuation: Option<&'a dyn saltus_core::Fluctuation>,
-    sums: CellSums,
-    phi: Vec<f64>,
-    u_p: Vec<f64>,
-    beta: Vec<f64>,
-    tau_t: Vec<f64>,
-    stats: Stats,
+    pub(super) sums: CellSums,
+    pub(super) phi: Vec<f64>,
+    pub(super) u_p: Vec<f64>,
+    pub(super) beta: Vec<f64>,
+    pub(super) tau_t: Vec<f64>,
+    pub(super) stats: Stats,
     steady: Steady,
-    cell_volume: f64,
-    fluid_every: u64,
+    pub(super) cell_volume: f64,
+    pub(super) fluid_every: u64,
     /// time of the flow (after the deposition) (s)
     time: f64,
     /// DEM steps of the flow
     steps: u64,
-    /// DEM steps of the deposition
-    pub settle_steps: u64,
-    mat: Material,
+    pub(super) stage: Stage,
+    /// DEM steps of the deposition taken, and to take
+    pub(super) settle_steps: u64,
+    pub(super) settle_total: u64,
+    /// body acceleration of the flow (the deposition runs without the streamwise pull)
+    pub(super) flow_body: [f64; 3],
+    pub(super) mat: Material,
     rho_f: f64,
-    bed_surface: f64,
+    pub(super) bed_surface: f64,
     vtk_dir: Option<PathBuf>,
     vtk_count: usize,
-    next_vtk: f64,
-    seed: u64,
-    zero_faces: Vec<f64>,
-    column_params: Option<ColumnParams>,
+    pub(super) next_vtk: f64,
+    pub(super) seed: u64,
+    pub(super) zero_faces: Vec<f64>,
+    pub(super) column_params: Option<ColumnParams>,
     re_free_hindrance: bool,
+    /// the pool of `solver.threads`, `None` for the caller's
+    pub(super) pool: Option<rayon::ThreadPool>,
+    /// wall clock of the flow phase: its start and the time spent up to the last step (s)
+    pub(super) flow_started: Option<Instant>,
+    pub(super) flow_wall: f64,
 }
 
 impl<'a> Lagrangian<'a> {
@@ -170,8 +158,18 @@ impl<'a> Lagrangian<'a> {
             None
         };
         let fluid_every = ((s.fluid_period / dt).round() as u64).max(1);
+        let pool = super::stepper::pool(s.threads, &scene.path)?;
+        let deposit = cfg.domain.initial == Initial::Bed;
+        let settle_total = if deposit { (s.settle_time / dt).ceil() as u64 } else { 0 };
+        let flow_body = dem.body;
+        let mut dem = dem;
+        if deposit {
+            // deposit without the streamwise pull: the bed forms at rest
+            dem.body[0] = 0.0;
+        }
         let v = |x: f64| vec![x; cells];
         Ok(Self {
+            scene,
             field: FluidField::at_rest(cells, dz, cfg.rough_height(d)),
             column,
             viscosity,
@@ -191,7 +189,13 @@ impl<'a> Lagrangian<'a> {
             fluid_every,
             time: 0.0,
             steps: 0,
+            stage: if deposit { Stage::Deposition } else { Stage::Flow },
             settle_steps: 0,
+            settle_total,
+            flow_body,
+            pool,
+            flow_started: None,
+            flow_wall: 0.0,
             mat,
             rho_f: scene.fluid.density,
             bed_surface: cfg.bed_surface(),
@@ -214,6 +218,10 @@ impl<'a> Lagrangian<'a> {
         }
     }
 
+    /// The scene.
+    pub fn scene(&self) -> &Scene {
+        self.scene
+    }
     /// Configuration.
     pub fn config(&self) -> &Config {
         &self.cfg
@@ -226,9 +234,37 @@ impl<'a> Lagrangian<'a> {
     pub fn steps(&self) -> u64 {
         self.steps
     }
+    /// DEM steps of the deposition.
+    pub fn settle_steps(&self) -> u64 {
+        self.settle_steps
+    }
     /// DEM time step (s).
     pub fn dt(&self) -> f64 {
-        self.dem.dt
+        self.dem.dt()
+    }
+    /// The DEM: particles, neighbour list, contact law.
+    pub fn dem(&self) -> &Dem {
+        &self.dem
+    }
+    /// Particles.
+    pub fn particles(&self) -> &Particles {
+        &self.dem.p
+    }
+    /// The drag state: fluctuation draws and clocks.
+    pub fn forces(&self) -> &FluidForces {
+        &self.forces
+    }
+    /// Fluid velocity the particles see, per cell (m/s).
+    pub fn fluid_velocity(&self) -> &[f64] {
+        &self.field.u
+    }
+    /// Cells of the fluid column.
+    pub fn cells(&self) -> usize {
+        self.field.u.len()
+    }
+    /// Wall-clock time of the flow phase so far (s), for the throughput.
+    pub fn flow_wall(&self) -> f64 {
+        self.flow_wall
     }
     /// Mobile particles.
     pub fn mobile(&self) -> usize {
@@ -268,18 +304,19 @@ impl<'a> Lagrangian<'a> {
     }
 
     /// One DEM step with the fluid force of the current fluid field.
-    fn dem_step(&mut self, all: bool) {
+    pub(super) fn dem_step(&mut self, all: bool) {
         if self.cfg.settings.fluid != FluidMode::Off {
             let upto = if all { self.dem.p.len() } else { self.dem.p.n_mobile };
             let models = self.models();
-            self.forces.evaluate(&self.dem.p, &self.field, &models, self.dem.dt, upto, &mut self.dem.ext);
+            let dt = self.dem.dt();
+            self.forces.evaluate(&self.dem.p, &self.field, &models, dt, upto, &mut self.dem.ext);
         }
         self.dem.step();
     }
 
     /// Average the particles on the cells and refresh phi (and the hindrance convention)
     /// the particles see.
-    fn average(&mut self) {
+    pub(super) fn average(&mut self) {
         self.sums.accumulate(&self.dem.p, self.field.base, self.field.dz, &self.forces.k, &self.forces.urx);
         let u_f: &[f64] = match &self.column {
             Some(c) => c.velocity(),
@@ -298,124 +335,22 @@ impl<'a> Lagrangian<'a> {
         }
     }
 
-    /// Deposition under gravity with the fluid at rest for `solver.settle_time`; with a
-    /// rough bottom, the lowest particles are then removed or fixed. Only for
-    /// `initial = "bed"`; other starts keep their particles.
-    pub fn settle(&mut self) -> Result<(), Breakdown> {
-        if self.cfg.domain.initial != Initial::Bed {
-            return Ok(());
+    /// Time of the current phase (s): of the deposition, then of the flow.
+    pub(super) fn phase_time(&self) -> f64 {
+        match self.stage {
+            Stage::Deposition => self.settle_steps as f64 * self.dem.dt(),
+            Stage::Flow => self.time,
         }
-        let n_steps = (self.cfg.settings.settle_time / self.dem.dt).ceil() as u64;
-        let every = self.fluid_every;
-        let saved_body = self.dem.body;
-        // deposit without the streamwise pull: the bed forms at rest
-        self.dem.body[0] = 0.0;
-        for k in 0..n_steps {
-            let update = k.checked_rem(every) == Some(0) && self.cfg.settings.fluid != FluidMode::Off;
-            self.dem_step(update);
-            if update {
-                self.average();
-                self.check()?;
-            }
-        }
-        self.dem.body = saved_body;
-        self.settle_steps = n_steps;
-        if self.cfg.domain.bottom == super::config::Bottom::Rough {
-            let (_, removed, fixed) = setup::bed_counts(&self.cfg, &self.mat);
-            self.dem.p = setup::fix_rough_layer(&self.dem.p, removed, fixed, self.mat.rho_p);
-        } else {
-            for v in [&mut self.dem.p.vx, &mut self.dem.p.vy, &mut self.dem.p.vz] {
-                v.fill(0.0);
-            }
-            for v in [&mut self.dem.p.wx, &mut self.dem.p.wy, &mut self.dem.p.wz] {
-                v.fill(0.0);
-            }
-        }
-        self.dem.reset_topology();
-        if self.cfg.domain.surface == super::config::Surface::Deposit && self.cfg.settings.fluid != FluidMode::Off {
-            self.fit_column_to_deposit()?;
-        }
-        let n = self.dem.p.len();
-        let fallback = self.forces.fallback_period;
-        self.forces = FluidForces::new(n, self.forces_seed(), self.forces.rho_f, self.forces.nu_f, self.mat.rho_p);
-        self.forces.fallback_period = fallback;
-        self.dem.time = 0.0;
-        Ok(())
-    }
-
-    /// Surface of the deposit above the column bottom (m): the highest level where the
-    /// packing, averaged over one diameter, is half its largest such average.
-    pub fn deposit_surface(&mut self) -> f64 {
-        let d = self.mat.d;
-        let dz = self.field.dz;
-        let n = self.sums.vol.len();
-        self.sums.accumulate(&self.dem.p, self.field.base, dz, &self.forces.k, &self.forces.urx);
-        let w = ((d / dz).round() as usize).max(1);
-        let mut best: f64 = 0.0;
-        let mut level = None;
-        let mean: Vec<f64> = (0..n)
-            .map(|c| {
-                let (lo, hi) = (c.saturating_sub(w / 2), (c + w / 2 + 1).min(n));
-                self.sums.vol[lo..hi].iter().sum::<f64>() / ((hi - lo) as f64 * self.cell_volume)
-            })
-            .collect();
-        for &m in &mean {
-            best = best.max(m);
-        }
-        for c in (0..n).rev() {
-            if mean[c] >= 0.5 * best {
-                level = Some((c as f64 + 0.5) * dz);
-                break;
-            }
-        }
-        level.unwrap_or(self.bed_surface)
-    }
-
-    /// Put the free surface `water_depth` above the deposit: a new column of the same
-    /// cell size (before the flow starts; it allocates).
-    fn fit_column_to_deposit(&mut self) -> Result<(), Breakdown> {
-        let surface = self.deposit_surface();
-        let dz = self.field.dz;
-        let height = surface + self.cfg.domain.water_depth;
-        let cells = ((height / dz).round() as usize).max(2);
-        let fail = |reason: String| Breakdown {
-            time: 0.0,
-            location: "fluid column".into(),
-            field: "height".into(),
-            value: height,
-            reason,
-        };
-        let grid = Grid::uniform(cells, height).map_err(|e| fail(e.to_string()))?;
-        let dz = grid.dz()[0];
-        if let Some(params) = self.column_params {
-            self.column = Some(FluidColumn::new(grid, params).map_err(|e| fail(e.to_string()))?);
-        }
-        let base = self.field.base;
-        self.field = FluidField::at_rest(cells, dz, base);
-        self.sums = CellSums::new(cells);
-        let v = |x: f64| vec![x; cells];
-        self.phi = v(0.0);
-        self.u_p = v(0.0);
-        self.beta = v(0.0);
-        self.tau_t = v(0.0);
-        self.stats = Stats::new(cells);
-        self.zero_faces = vec![0.0; cells + 1];
-        self.cell_volume = self.cfg.domain.length * self.cfg.domain.width * dz;
-        self.bed_surface = surface;
-        Ok(())
-    }
-
-    fn forces_seed(&self) -> u64 {
-        self.seed
     }
 
     /// First non-finite or runaway particle.
-    fn check(&self) -> Result<(), Breakdown> {
+    pub(super) fn check(&self) -> Result<(), Breakdown> {
+        let time = self.phase_time();
         if let Some((a, field, value)) = self.dem.first_non_finite() {
             return Err(Breakdown {
-                time: self.time,
-                location: format!("particle {a}"),
-                field: field.into(),
+                time,
+                place: Place::Particle { index: a },
+                field: Cow::Borrowed(field),
                 value,
                 reason: "not finite".into(),
             });
@@ -425,12 +360,13 @@ impl<'a> Lagrangian<'a> {
             let s2 = p.vx[a] * p.vx[a] + p.vy[a] * p.vy[a] + p.vz[a] * p.vz[a];
             if s2 > MAX_SPEED * MAX_SPEED {
                 return Err(Breakdown {
-                    time: self.time,
-                    location: format!("particle {a} (z = {:.6} m)", p.z[a]),
-                    field: "|v|".into(),
+                    time,
+                    place: Place::Particle { index: a },
+                    field: Cow::Borrowed("|v|"),
                     value: s2.sqrt(),
                     reason: format!(
-                        "speed above {MAX_SPEED} m/s: the time step is too large for the contact stiffness (lower solver.dt_safety)"
+                        "speed above {MAX_SPEED} m/s at z = {:.6} m: the time step is too large for the contact stiffness (lower solver.dt_safety) or the driving too strong",
+                        p.z[a]
                     ),
                 });
             }
@@ -448,8 +384,8 @@ impl<'a> Lagrangian<'a> {
             if let Err(e) = col.step(tau_f, &coupling, &closures) {
                 return Err(Breakdown {
                     time: self.time,
-                    location: "fluid column".into(),
-                    field: "u_f".into(),
+                    place: Place::Column,
+                    field: Cow::Borrowed("u_f"),
                     value: f64::NAN,
                     reason: e.to_string(),
                 });
@@ -498,31 +434,13 @@ impl<'a> Lagrangian<'a> {
         Ok(())
     }
 
-    /// Deposition (see [`Lagrangian::settle`]) and the start of the fluctuation clocks.
-    pub fn start(&mut self) -> Result<(), Breakdown> {
-        self.settle()?;
-        self.forces.restart_fluctuations();
-        self.next_vtk = 0.0;
-        Ok(())
-    }
-
-    /// Progress at the last fluid update.
-    pub fn progress(&self) -> Progress {
-        Progress {
-            time: self.time,
-            end_time: self.cfg.settings.end_time,
-            steps: self.steps as usize,
-            dt: self.dem.dt,
-            residual: self.steady.change,
-        }
-    }
-
     /// One DEM step of the flow, with the fluid update when it is due. `Ok(true)` when the
-    /// fluid was updated, `Err` with the ending when the run is over.
-    pub fn step(&mut self) -> Result<bool, Ending> {
+    /// fluid was updated, `Err` with the ending when the run is over. `solver.max_steps`
+    /// bounds the DEM steps of the whole run, deposition included.
+    pub fn step_dem(&mut self) -> Result<bool, Ending> {
         let s = &self.cfg.settings;
         let (every, fluid) = (self.fluid_every, s.fluid);
-        if self.steps >= s.max_steps {
+        if self.settle_steps + self.steps >= s.max_steps {
             return Err(Ending::MaxSteps);
         }
         if self.time >= s.end_time {
@@ -539,14 +457,15 @@ impl<'a> Lagrangian<'a> {
             }
         }
         self.steps += 1;
-        self.time = self.steps as f64 * self.dem.dt;
+        self.time = self.steps as f64 * self.dem.dt();
         Ok(update)
     }
 
-    /// DEM steps up to and including the next fluid update; `Some` when the run is over.
-    pub fn advance(&mut self) -> Option<Ending> {
+    /// DEM steps of the flow up to and including the next fluid update; `Some` when the
+    /// run is over.
+    pub(super) fn advance(&mut self) -> Option<Ending> {
         loop {
-            match self.step() {
+            match self.step_dem() {
                 Err(e) => return Some(e),
                 Ok(false) => {}
                 Ok(true) => {
@@ -555,22 +474,6 @@ impl<'a> Lagrangian<'a> {
                     }
                     return None;
                 }
-            }
-        }
-    }
-
-    /// Run the flow to the end time (or steady state), calling `observer` after every fluid
-    /// update; it may stop the run by returning false.
-    pub fn run(&mut self, observer: &mut dyn FnMut(&Progress) -> bool) -> Ending {
-        if let Err(b) = self.start() {
-            return Ending::Unstable(b);
-        }
-        loop {
-            if let Some(e) = self.advance() {
-                return e;
-            }
-            if !observer(&self.progress()) {
-                return Ending::EndTime;
             }
         }
     }

@@ -140,8 +140,8 @@ pub struct Steady {
     count: usize,
     last: Option<f64>,
     streak: usize,
-    /// last relative change between windows
-    pub change: f64,
+    /// last relative change between windows (infinite before two windows)
+    change: f64,
 }
 
 impl Steady {
@@ -170,6 +170,11 @@ impl Steady {
             self.count = 0;
         }
         self.is_steady()
+    }
+
+    /// Last relative change between consecutive windows, once there were two.
+    pub fn change(&self) -> Option<f64> {
+        self.change.is_finite().then_some(self.change)
     }
 
     /// Whether the criterion is met.

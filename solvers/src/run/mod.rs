@@ -11,6 +11,7 @@
 
 use std::borrow::Cow;
 use std::fmt;
+use std::path::Path;
 use std::time::Instant;
 
 use serde::Serialize;
@@ -96,6 +97,16 @@ impl Ending {
         }
     }
 
+    /// Why the run stopped before its end, as written in `summary.json`: the breakdown or
+    /// the interruption; `None` for the solver's own endings.
+    pub fn error(&self) -> Option<String> {
+        match self {
+            Ending::Unstable(b) => Some(b.to_string()),
+            Ending::Interrupted => Some("interrupted before its end".into()),
+            Ending::Steady | Ending::EndTime | Ending::MaxSteps => None,
+        }
+    }
+
     /// The breakdown, for an unstable run.
     pub fn breakdown(&self) -> Option<&Breakdown> {
         match self {
@@ -159,6 +170,12 @@ pub trait Stepper {
     /// Profiles, summary and paragraph of the state as it is now, for a run that ended
     /// with `ending` after `wall` seconds of wall-clock time.
     fn report(&self, ending: &Ending, wall: f64) -> RunReport;
+
+    /// Where the run's outputs go, for a solver that writes some during the run (the
+    /// DEM's VTK snapshots); told once before the first step. An extension of the
+    /// argmin-like loop: checkpoints and snapshots belong to the solver, their folder to
+    /// the caller.
+    fn set_output_dir(&mut self, _dir: &Path) {}
 }
 
 /// Something that watches a run.
