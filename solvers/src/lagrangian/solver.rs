@@ -18,6 +18,7 @@ use super::particles::Particles;
 use super::setup::{self, Material};
 use super::stats::{Stats, Steady};
 use crate::column::{Closures, ColumnParams, Coupling, FluidColumn, Grid, TopBoundary};
+use crate::inputs;
 use crate::run::{Breakdown, Ending, Place};
 
 /// Particle speed beyond which the run is declared unstable (m/s): far above any
@@ -149,8 +150,12 @@ impl<'a> Lagrangian<'a> {
                 relaxation: 0.5,
                 particle_density: scene.particles.density,
                 gravity_normal: scene.physics.gravity * (1.0 - scene.physics.slope * scene.physics.slope).sqrt(),
-                // the driving over the whole column (k-omega's rough wall and in-bed omega)
-                friction_velocity: None,
+                // u* of the flow above the bed, as in the Eulerian solver (k-omega's rough
+                // wall and in-bed omega): the bed carries no part of the driving's stress
+                friction_velocity: Some(crate::column::turbulence::friction_velocity(
+                    scene.physics.gravity * scene.physics.slope + scene.physics.pressure_gradient / scene.fluid.density,
+                    cfg.domain.water_depth,
+                )),
             };
             column_params = Some(params);
             Some(FluidColumn::new(grid, params)?)
@@ -400,26 +405,12 @@ impl<'a> Lagrangian<'a> {
                 wf.extend_from_slice(omega);
             }
             for ((r, &nu), &g) in self.field.reynolds.iter_mut().zip(col.eddy_viscosity()).zip(col.shear_rate()) {
-                *r = (nu * g).max(0.0);
+                *r = inputs::reynolds_stress(nu, g);
             }
             col.reynolds_stress(&mut self.tau_t);
-            let zc = col.grid().centres();
-            // bed surface: the highest cell at least half as packed as the densest one (the
-            // nominal surface before any particle is there)
-            let dense = self.field.phi.iter().fold(0.0f64, |a, &b| a.max(b));
-            let bed = match self.field.phi.iter().rposition(|&f| dense > 0.1 && f >= 0.5 * dense) {
-                Some(c) => zc[c],
-                None => self.bed_surface,
-            };
-            let (mut sum, mut count) = (0.0, 0usize);
-            for (&z, &u) in zc.iter().zip(col.velocity()) {
-                if z > bed {
-                    sum += u;
-                    count += 1;
-                }
-            }
-            self.field.scales.depth = col.grid().height() - bed;
-            self.field.scales.bulk_velocity = if count > 0 { sum / count as f64 } else { 0.0 };
+            let grid = col.grid();
+            let bed = inputs::bed_surface(grid.centres(), &self.field.phi, self.bed_surface);
+            self.field.scales = inputs::flow_scales(grid.centres(), grid.dz(), col.velocity(), grid.height(), bed);
         }
         self.check()?;
         let qs: f64 = self.sums.v[0].iter().sum::<f64>() / (self.cell_volume / self.field.dz);
