@@ -1,6 +1,6 @@
 //! The deposition (`initial = "bed"`): the particles settle under gravity with the fluid at
-//! rest for `solver.settle_time`, one fluid period per call so that the driver sees it
-//! (phase [`crate::run::Phase::Setup`]) and `solver.max_steps` bounds it; then, with a
+//! rest for `solver.lagrangian.settle_time`, one fluid period per call so that the driver sees it
+//! (phase [`crate::run::Phase::Setup`]) and `solver.lagrangian.max_steps` bounds it; then, with a
 //! rough bottom, the lowest particles are removed or fixed, and with `surface =
 //! "deposit"` the free surface is put `water_depth` above the deposit.
 

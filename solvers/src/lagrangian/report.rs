@@ -1,7 +1,7 @@
 //! Profiles, summary and paragraph of a Lagrangian run, read from the solver through its
 //! methods, with the same contract as the Eulerian solver.
 //!
-//! The profiles are time averages over the window from `solver.stats_start` to the end
+//! The profiles are time averages over the window from `solver.lagrangian.stats_start` to the end
 //! of the run. A run that ends before its first sample (interrupted, unstable or out of
 //! steps before `stats_start`, or without fluid: the samples are taken at the fluid
 //! updates) has nothing to average: its profiles hold `z` only and its summary no
@@ -89,7 +89,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
             )
         }
         _ => format!(
-            "no averaging sample (the window opens at solver.stats_start = {} s{}): no transport figures",
+            "no averaging sample (the window opens at solver.lagrangian.stats_start = {} s{}): no transport figures",
             m.config().settings.stats_start,
             if m.config().settings.fluid == super::config::FluidMode::Off {
                 ", and runs without fluid take none"

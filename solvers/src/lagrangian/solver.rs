@@ -79,7 +79,7 @@ pub struct Lagrangian<'a> {
     pub(super) zero_faces: Vec<f64>,
     pub(super) column_params: Option<ColumnParams>,
     re_free_hindrance: bool,
-    /// the pool of `solver.threads`, `None` for the caller's
+    /// the pool of `solver.lagrangian.threads`, `None` for the caller's
     pub(super) pool: Option<rayon::ThreadPool>,
     /// wall clock of the flow phase: its start and the time spent up to the last step (s)
     pub(super) flow_started: Option<Instant>,
@@ -216,7 +216,7 @@ impl<'a> Lagrangian<'a> {
         })
     }
 
-    /// Write VTK particle snapshots into `dir` every `solver.vtk_period` (if > 0).
+    /// Write VTK particle snapshots into `dir` every `solver.lagrangian.vtk_period` (if > 0).
     pub fn set_vtk_dir(&mut self, dir: &Path) {
         if self.cfg.settings.vtk_period > 0.0 {
             self.vtk_dir = Some(dir.to_path_buf());
@@ -370,7 +370,7 @@ impl<'a> Lagrangian<'a> {
                     field: Cow::Borrowed("|v|"),
                     value: s2.sqrt(),
                     reason: format!(
-                        "speed above {MAX_SPEED} m/s at z = {:.6} m: the time step is too large for the contact stiffness (lower solver.dt_safety) or the driving too strong",
+                        "speed above {MAX_SPEED} m/s at z = {:.6} m: the time step is too large for the contact stiffness (lower solver.lagrangian.dt_safety) or the driving too strong",
                         p.z[a]
                     ),
                 });
@@ -426,7 +426,7 @@ impl<'a> Lagrangian<'a> {
     }
 
     /// One DEM step of the flow, with the fluid update when it is due. `Ok(true)` when the
-    /// fluid was updated, `Err` with the ending when the run is over. `solver.max_steps`
+    /// fluid was updated, `Err` with the ending when the run is over. `solver.lagrangian.max_steps`
     /// bounds the DEM steps of the whole run, deposition included.
     pub fn step_dem(&mut self) -> Result<bool, Ending> {
         let s = &self.cfg.settings;

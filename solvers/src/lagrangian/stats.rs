@@ -1,6 +1,6 @@
 //! Time-averaged profiles and the steady-state test.
 //!
-//! Each sample (one per fluid update after `solver.stats_start`) adds the slice sums of
+//! Each sample (one per fluid update after `solver.lagrangian.stats_start`) adds the slice sums of
 //! [`super::averaging::CellSums`] and the fluid fields. The averages are taken over space
 //! and time together:
 //!

@@ -1,6 +1,6 @@
 //! The Lagrangian solver as the driver sees it: one unit of work is one fluid period of
 //! DEM steps, first of the deposition ([`Phase::Setup`]), then of the flow
-//! ([`Phase::Flow`]), each in the pool of `solver.threads`.
+//! ([`Phase::Flow`]), each in the pool of `solver.lagrangian.threads`.
 
 use std::path::Path;
 use std::time::Instant;
@@ -28,7 +28,7 @@ pub fn pool(threads: usize, file: &Path) -> Result<Option<rayon::ThreadPool>, Er
         .num_threads(threads)
         .build()
         .map(Some)
-        .map_err(|e| Error::Invalid(format!("{}: solver.threads = {threads}: {e}", file.display())))
+        .map_err(|e| Error::Invalid(format!("{}: solver.lagrangian.threads = {threads}: {e}", file.display())))
 }
 
 impl Lagrangian<'_> {
