@@ -2,7 +2,7 @@
 //! typed and checked at load by [`saltus_core::scene`]; here only gathered into the
 //! numbers the DEM uses.
 
-use saltus_core::scene::{Scene, DEM_BED_PHI};
+use saltus_core::scene::{LagrangianSettings, Scene, DEM_BED_PHI};
 use saltus_core::Error;
 
 use super::contact::ContactModel;
@@ -49,8 +49,8 @@ pub struct Domain {
 /// The DEM's numerics and contact law.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Settings {
-    /// simulated time of the run after the deposition (s)
-    pub end_time: f64,
+    /// `[solver.lagrangian]` as resolved at load (every default filled in)
+    pub numerics: LagrangianSettings,
     /// contact law
     pub contact: ContactModel,
     /// normal stiffness k_n of the linear law (N/m)
@@ -65,32 +65,8 @@ pub struct Settings {
     pub restitution: f64,
     /// particle friction coefficient mu_p
     pub friction: f64,
-    /// time step over the contact time
-    pub dt_safety: f64,
-    /// Verlet skin over d
-    pub skin: f64,
-    /// fluid coupling
-    pub fluid: FluidMode,
-    /// fluid resolution period tau_f (s)
-    pub fluid_period: f64,
-    /// deposition time before the flow starts, fluid at rest (s)
+    /// deposition time before the flow starts, fluid at rest (s); 0 without a deposition
     pub settle_time: f64,
-    /// time after which profiles are averaged (s)
-    pub stats_start: f64,
-    /// averaging window of the steady-state test (s)
-    pub steady_window: f64,
-    /// relative change of the window-averaged transport rate called steady
-    pub steady_tolerance: f64,
-    /// consecutive windows under the tolerance
-    pub steady_windows: usize,
-    /// stop as soon as the run is steady
-    pub stop_when_steady: bool,
-    /// threads (0: all cores)
-    pub threads: usize,
-    /// period of VTK particle snapshots (s); 0: none
-    pub vtk_period: f64,
-    /// cap on DEM steps
-    pub max_steps: u64,
 }
 
 /// Checked configuration of one Lagrangian run.
@@ -135,7 +111,7 @@ impl Config {
         };
         let linear = p.contact.law == ContactModel::Linear;
         let settings = Settings {
-            end_time: l.end_time,
+            numerics: l.clone(),
             contact: p.contact.law,
             // the Hertz law has no k_n: any positive number keeps the struct total
             stiffness: match p.contact.stiffness {
@@ -148,23 +124,11 @@ impl Config {
             poisson: p.contact.poisson,
             restitution: p.restitution,
             friction: p.friction,
-            dt_safety: l.dt_safety,
-            skin: l.skin,
-            fluid: l.fluid,
-            fluid_period: l.fluid_period,
             settle_time: match l.settle_time {
                 Some(t) => t,
                 None if initial_bed => return Err(missing("solver.lagrangian.settle_time")),
                 None => 0.0,
             },
-            stats_start: l.stats_start,
-            steady_window: l.steady_window,
-            steady_tolerance: l.steady_tolerance,
-            steady_windows: l.steady_windows,
-            stop_when_steady: l.stop_when_steady,
-            threads: l.threads,
-            vtk_period: l.vtk_period,
-            max_steps: l.max_steps,
         };
         Ok(Config { domain, settings })
     }

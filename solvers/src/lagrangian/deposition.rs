@@ -20,11 +20,11 @@ impl Lagrangian<'_> {
     /// particles checked at its first step, as in the flow), then the end of the
     /// deposition when its time is up. `Some` when the run is over.
     pub(super) fn deposit_period(&mut self) -> Option<Ending> {
-        let max_steps = self.cfg.settings.max_steps;
+        let max_steps = self.cfg.settings.numerics.max_steps;
         if self.settle_steps >= max_steps {
             return Some(Ending::MaxSteps);
         }
-        let fluid = self.cfg.settings.fluid != FluidMode::Off;
+        let fluid = self.cfg.settings.numerics.fluid != FluidMode::Off;
         let end = (self.settle_steps + self.fluid_every).min(self.settle_total).min(max_steps);
         while self.settle_steps < end {
             let update = self.settle_steps.is_multiple_of(self.fluid_every) && fluid;
@@ -59,7 +59,7 @@ impl Lagrangian<'_> {
             }
         }
         self.dem.reset_topology();
-        if self.cfg.domain.surface == Surface::Deposit && self.cfg.settings.fluid != FluidMode::Off {
+        if self.cfg.domain.surface == Surface::Deposit && self.cfg.settings.numerics.fluid != FluidMode::Off {
             self.fit_column_to_deposit()?;
         }
         let n = self.dem.p.len();

@@ -90,8 +90,8 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         }
         _ => format!(
             "no averaging sample (the window opens at solver.lagrangian.stats_start = {} s{}): no transport figures",
-            m.config().settings.stats_start,
-            if m.config().settings.fluid == super::config::FluidMode::Off {
+            m.config().settings.numerics.stats_start,
+            if m.config().settings.numerics.fluid == super::config::FluidMode::Off {
                 ", and runs without fluid take none"
             } else {
                 ""

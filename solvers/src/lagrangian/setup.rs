@@ -187,7 +187,7 @@ pub fn fix_rough_layer(p: &Particles, removed: usize, fixed: usize, rho_p: f64) 
 /// pressure gradient G felt by the particle volume.
 pub fn body_acceleration(cfg: &Config, g: f64, slope: f64, rho_f: f64, rho_p: f64, grad: f64) -> [f64; 3] {
     let cos = (1.0 - slope * slope).max(0.0).sqrt();
-    let wet = cfg.settings.fluid != FluidMode::Off;
+    let wet = cfg.settings.numerics.fluid != FluidMode::Off;
     let buoy = if wet { rho_f / rho_p } else { 0.0 };
     let gx = g * slope + if wet { grad / rho_p } else { 0.0 };
     [gx, 0.0, -g * cos * (1.0 - buoy)]

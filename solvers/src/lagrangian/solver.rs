@@ -117,7 +117,7 @@ impl<'a> Lagrangian<'a> {
             ContactModel::Hertz => ContactLaw::hertz(s.young, s.poisson, s.restitution, s.friction),
         };
         let m = rho_p * setup::sphere_volume(d);
-        let dt = s.dt_safety * law.contact_time(m, 0.5 * d, rho_p, s.young, s.poisson);
+        let dt = s.numerics.dt_safety * law.contact_time(m, 0.5 * d, rho_p, s.young, s.poisson);
         let body = setup::body_acceleration(
             &cfg,
             scene.physics.gravity,
@@ -126,12 +126,12 @@ impl<'a> Lagrangian<'a> {
             rho_p,
             scene.physics.pressure_gradient,
         );
-        let dem = Dem::new(p, setup::make_box(&cfg), law, setup::make_walls(&cfg), body, dt, s.skin * d);
+        let dem = Dem::new(p, setup::make_box(&cfg), law, setup::make_walls(&cfg), body, dt, s.numerics.skin * d);
         let n = dem.p.len();
         let mut forces = FluidForces::new(n, scene.seed, scene.fluid.density, scene.fluid.viscosity, rho_p);
-        forces.fallback_period = s.fluid_period;
+        forces.fallback_period = s.numerics.fluid_period;
         let cells = cfg.domain.cells;
-        let height = if s.fluid == FluidMode::Off || cfg.domain.bottom == super::config::Bottom::Periodic {
+        let height = if s.numerics.fluid == FluidMode::Off || cfg.domain.bottom == super::config::Bottom::Periodic {
             1.0
         } else {
             cfg.column_height()
@@ -139,7 +139,7 @@ impl<'a> Lagrangian<'a> {
         let grid = Grid::uniform(cells, height).map_err(|e| Error::Invalid(format!("{file}: domain.cells: {e}")))?;
         let dz = grid.dz()[0];
         let mut column_params = None;
-        let column = if s.fluid == FluidMode::Coupled {
+        let column = if s.numerics.fluid == FluidMode::Coupled {
             let params = ColumnParams {
                 density: scene.fluid.density,
                 viscosity: scene.fluid.viscosity,
@@ -162,8 +162,8 @@ impl<'a> Lagrangian<'a> {
         } else {
             None
         };
-        let fluid_every = ((s.fluid_period / dt).round() as u64).max(1);
-        let pool = super::stepper::pool(s.threads, &scene.path)?;
+        let fluid_every = ((s.numerics.fluid_period / dt).round() as u64).max(1);
+        let pool = super::stepper::pool(s.numerics.threads, &scene.path)?;
         let deposit = cfg.domain.initial == Initial::Bed;
         let settle_total = if deposit { (s.settle_time / dt).ceil() as u64 } else { 0 };
         let flow_body = dem.body;
@@ -189,7 +189,7 @@ impl<'a> Lagrangian<'a> {
             beta: v(0.0),
             tau_t: v(0.0),
             stats: Stats::new(cells),
-            steady: Steady::new(s.steady_window, s.steady_tolerance, s.steady_windows),
+            steady: Steady::new(s.numerics.steady_window, s.numerics.steady_tolerance, s.numerics.steady_windows),
             cell_volume: cfg.domain.length * cfg.domain.width * dz,
             fluid_every,
             time: 0.0,
@@ -218,7 +218,7 @@ impl<'a> Lagrangian<'a> {
 
     /// Write VTK particle snapshots into `dir` every `solver.lagrangian.vtk_period` (if > 0).
     pub fn set_vtk_dir(&mut self, dir: &Path) {
-        if self.cfg.settings.vtk_period > 0.0 {
+        if self.cfg.settings.numerics.vtk_period > 0.0 {
             self.vtk_dir = Some(dir.to_path_buf());
         }
     }
@@ -310,7 +310,7 @@ impl<'a> Lagrangian<'a> {
 
     /// One DEM step with the fluid force of the current fluid field.
     pub(super) fn dem_step(&mut self, all: bool) {
-        if self.cfg.settings.fluid != FluidMode::Off {
+        if self.cfg.settings.numerics.fluid != FluidMode::Off {
             let upto = if all { self.dem.p.len() } else { self.dem.p.n_mobile };
             let models = self.models();
             let dt = self.dem.dt();
@@ -382,7 +382,7 @@ impl<'a> Lagrangian<'a> {
     /// One fluid update: averages, column solve, field refresh, statistics.
     fn fluid_update(&mut self) -> Result<(), Breakdown> {
         self.average();
-        let tau_f = self.cfg.settings.fluid_period;
+        let tau_f = self.cfg.settings.numerics.fluid_period;
         if let Some(col) = self.column.as_mut() {
             let coupling = Coupling { phi: &self.field.phi, beta: &self.beta, u_p: &self.u_p };
             let closures = Closures { viscosity: self.viscosity, turbulence: self.turbulence };
@@ -415,7 +415,7 @@ impl<'a> Lagrangian<'a> {
         self.check()?;
         let qs: f64 = self.sums.v[0].iter().sum::<f64>() / (self.cell_volume / self.field.dz);
         self.steady.add(self.time, qs);
-        if self.time >= self.cfg.settings.stats_start {
+        if self.time >= self.cfg.settings.numerics.stats_start {
             let tau_face: &[f64] = match &self.column {
                 Some(c) => c.shear_stress(),
                 None => &self.zero_faces,
@@ -430,11 +430,11 @@ impl<'a> Lagrangian<'a> {
     /// bounds the DEM steps of the whole run, deposition included.
     pub fn step_dem(&mut self) -> Result<bool, Ending> {
         let s = &self.cfg.settings;
-        let (every, fluid) = (self.fluid_every, s.fluid);
-        if self.settle_steps + self.steps >= s.max_steps {
+        let (every, fluid) = (self.fluid_every, s.numerics.fluid);
+        if self.settle_steps + self.steps >= s.numerics.max_steps {
             return Err(Ending::MaxSteps);
         }
-        if self.time >= s.end_time {
+        if self.time >= s.numerics.end_time {
             return Err(Ending::EndTime);
         }
         let update = self.steps.checked_rem(every) == Some(0);
@@ -444,7 +444,7 @@ impl<'a> Lagrangian<'a> {
             r.map_err(Ending::Unstable)?;
             if self.vtk_dir.is_some() && self.time >= self.next_vtk {
                 self.write_vtk();
-                self.next_vtk += self.cfg.settings.vtk_period;
+                self.next_vtk += self.cfg.settings.numerics.vtk_period;
             }
         }
         self.steps += 1;
@@ -460,7 +460,7 @@ impl<'a> Lagrangian<'a> {
                 Err(e) => return Some(e),
                 Ok(false) => {}
                 Ok(true) => {
-                    if self.cfg.settings.stop_when_steady && self.steady.is_steady() {
+                    if self.cfg.settings.numerics.stop_when_steady && self.steady.is_steady() {
                         return Some(Ending::Steady);
                     }
                     return None;

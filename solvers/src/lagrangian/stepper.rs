@@ -84,7 +84,7 @@ impl Stepper for Lagrangian<'_> {
             Stage::Flow => Progress {
                 phase: Phase::Flow,
                 time: self.time(),
-                end_time: self.config().settings.end_time,
+                end_time: self.config().settings.numerics.end_time,
                 steps: self.steps(),
                 dt,
                 residual: self.steady().change(),
