@@ -2,6 +2,16 @@
 //! on a CSV, closure comparison plots, the run driver and scene comparisons. No physics
 //! lives here: every number comes from a closure or a solver.
 
+/// `eprintln!` that never panics: a closed or full stderr (`2>/dev/full`, errors piped
+/// into `head`) loses the message, not the run's outputs or its exit code.
+#[macro_export]
+macro_rules! errln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 pub mod compare;
 pub mod errors;
 pub mod eval;

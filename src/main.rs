@@ -132,7 +132,7 @@ fn main() -> ExitCode {
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            saltus::errln!("error: {e:#}");
             // a run stopped early wrote its outputs and says how it stopped; anything
             // else is a failure before or around the work
             ExitCode::from(e.downcast_ref::<saltus::runner::Stopped>().map_or(2, |s| s.code))
@@ -178,11 +178,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let out = out.unwrap_or_else(|| saltus::runner::default_out(&s));
             let bar = saltus::runner::progress_bar(std::io::stderr().is_terminal());
             if let Err(e) = saltus::runner::catch_interrupt() {
-                eprintln!("warning: {e:#}; Ctrl-C ends the run without writing its outputs");
+                saltus::errln!("warning: {e:#}; Ctrl-C ends the run without writing its outputs");
             }
             let outcome = saltus::runner::run_scene(&s, &out, &bar);
             for w in &outcome.warnings {
-                eprintln!("warning: {w}");
+                saltus::errln!("warning: {w}");
             }
             let Some(report) = &outcome.report else {
                 anyhow::bail!("{}", outcome.error.unwrap_or_else(|| "the run failed".into()));
@@ -203,7 +203,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let out = out.unwrap_or_else(|| saltus::compare::default_out(&cmp));
             let report = saltus::compare::run(&cmp, &out, std::io::stderr().is_terminal())?;
             for w in &report.warnings {
-                eprintln!("warning: {w}");
+                saltus::errln!("warning: {w}");
             }
             out!("{}", report.text_table());
             outln!("outputs: {}", out.display());

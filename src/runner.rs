@@ -99,7 +99,7 @@ pub fn catch_interrupt() -> anyhow::Result<()> {
         if INTERRUPTED.swap(true, Ordering::SeqCst) {
             std::process::exit(EXIT_INTERRUPTED.into());
         }
-        eprintln!(
+        crate::errln!(
             "\ninterrupted: stopping after the current step and writing the outputs (Ctrl-C again to quit at once)"
         );
     })
@@ -173,7 +173,7 @@ pub fn run_scene(scene: &Scene, out: &Path, bar: &ProgressBar) -> RunOutcome {
                 while next_line <= elapsed {
                     next_line += LOG_EVERY;
                 }
-                eprintln!("{label}: [{:.0} s] {}", elapsed.as_secs_f64(), describe(p));
+                crate::errln!("{label}: [{:.0} s] {}", elapsed.as_secs_f64(), describe(p));
             }
         } else if !matches!(last, Some(t) if t.elapsed() < Duration::from_millis(50)) {
             last = Some(Instant::now());

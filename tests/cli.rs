@@ -933,3 +933,17 @@ fn ctrl_c_stops_a_run_with_its_outputs_written_and_exit_130() {
     assert_eq!(s["ending"].as_str(), Some("interrupted"));
     assert!(d.join("profiles.csv").is_file() && d.join("scene.toml").is_file());
 }
+
+#[test]
+fn a_full_stderr_loses_the_message_not_the_exit_code() {
+    // `2>/dev/full`: every write to stderr fails; the error path must still exit 2
+    // (bad input), not panic (101)
+    let full = std::fs::OpenOptions::new().write(true).open("/dev/full").expect("/dev/full on Linux");
+    let o = Command::new(env!("CARGO_BIN_EXE_saltus"))
+        .args(["check", "cases/chassagne2023/case01.toml", "--set", "closures.drag={type=\"nope\"}"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stderr(std::process::Stdio::from(full))
+        .output()
+        .expect("run saltus");
+    assert_eq!(o.status.code(), Some(2), "{:?}", o.status);
+}
