@@ -367,3 +367,25 @@ fn k_omega_column_feeds_the_eddy_interaction_model() {
     let bound = 6.0 * (2.0 * kmax / 3.0).sqrt();
     assert!(fl.iter().flatten().all(|c| c.abs() <= bound), "fluctuation beyond 6 sigma of the largest k");
 }
+
+#[test]
+fn a_fluid_period_longer_than_the_run_ends_with_an_outcome_not_a_panic() {
+    // a fluid period of 1e6 s: the column is stepped by 1e6 s at the first update and the
+    // state is checked only every CHECK_STEPS DEM steps in between. Whatever the physics
+    // makes of it, the run must end with an outcome (the last state written, no
+    // non-finite number in the profiles), not a panic in the neighbour list or the fluid
+    // interpolation from a particle flung to infinity.
+    let s = small_bed(&[
+        "solver.lagrangian.fluid_period=1e6",
+        "solver.lagrangian.settle_time=0.02",
+        "solver.lagrangian.end_time=0.05",
+    ]);
+    let out = tmp_out("long_fluid_period");
+    let outcome = saltus_solvers::run(&s, &out, &mut Quiet).expect("an outcome");
+    if let Some(b) = outcome.ending.breakdown() {
+        assert!(matches!(b.place, Place::Particle { .. }), "{b}");
+    }
+    let profiles = std::fs::read_to_string(out.join("profiles.csv")).expect("profiles written");
+    assert!(!profiles.to_lowercase().contains("nan") && !profiles.contains("inf"), "{profiles}");
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -10,7 +10,7 @@ use super::averaging::CellSums;
 use super::config::{Bottom, FluidMode, Surface};
 use super::drag::{FluidField, FluidForces};
 use super::setup;
-use super::solver::{Lagrangian, Stage};
+use super::solver::{Lagrangian, Stage, CHECK_STEPS};
 use super::stats::Stats;
 use crate::column::{FluidColumn, Grid};
 use crate::run::{Breakdown, Ending, Place};
@@ -25,13 +25,17 @@ impl Lagrangian<'_> {
             return Some(Ending::MaxSteps);
         }
         let fluid = self.cfg.settings.numerics.fluid != FluidMode::Off;
-        let end = (self.settle_steps + self.fluid_every).min(self.settle_total).min(max_steps);
+        let period = self.fluid_every.min(CHECK_STEPS);
+        let end = (self.settle_steps + period).min(self.settle_total).min(max_steps);
         while self.settle_steps < end {
             let update = self.settle_steps.is_multiple_of(self.fluid_every) && fluid;
+            let checkpoint = self.settle_steps.is_multiple_of(CHECK_STEPS);
             self.dem_step(update);
             self.settle_steps += 1;
             if update {
                 self.average();
+            }
+            if update || checkpoint {
                 if let Err(b) = self.check() {
                     return Some(Ending::Unstable(during_deposition(b)));
                 }

@@ -104,10 +104,12 @@ impl FluidField {
             let w = (z / (0.5 * self.dz)).clamp(0.0, 1.0);
             return w * self.u[0];
         }
-        let k = s as usize; // s > 0 here: truncation is the floor
-        if k + 1 >= n {
+        // compared as floats before the cast: a particle flung far away (s huge, inf or
+        // NaN) would saturate the cast and overflow k + 1
+        if !(s < (n - 1) as f64) {
             return self.u[n - 1];
         }
+        let k = s as usize; // 0 < s < n - 1 here: truncation is the floor
         let w = s - k as f64;
         self.u[k] + w * (self.u[k + 1] - self.u[k])
     }

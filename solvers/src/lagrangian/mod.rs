@@ -20,4 +20,4 @@ pub use contact::{ContactLaw, ContactModel};
 pub use dem::{Dem, Wall};
 pub use neighbours::NeighbourList;
 pub use particles::{Box3, Particles};
-pub use solver::{Lagrangian, MAX_SPEED};
+pub use solver::{Lagrangian, CHECK_STEPS, MAX_SPEED};

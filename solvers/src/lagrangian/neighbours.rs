@@ -160,7 +160,9 @@ impl NeighbourList {
                 let lo = v.iter().fold(f64::INFINITY, |a, &c| a.min(c));
                 let hi = v.iter().fold(f64::NEG_INFINITY, |a, &c| a.max(c));
                 let (lo, hi) = if n == 0 { (0.0, 0.0) } else { (lo, hi) };
-                let m = (((hi - lo) / cut).floor() as usize + 1).min(1 << 20);
+                // clamped as a float before the cast: a particle flung to infinity (caught by
+                // the next check of the state) must not wrap the count to zero cells
+                let m = ((hi - lo) / cut).floor().clamp(0.0, ((1 << 20) - 1) as f64) as usize + 1;
                 axes[axis] = Axis { lo, size: cut, n: m, periodic: false };
             }
         }

@@ -26,6 +26,11 @@ use crate::run::{Breakdown, Ending, Place};
 /// stiffness.
 pub const MAX_SPEED: f64 = 100.0;
 
+/// DEM steps between two checks of the state (and two returns to the driver) when the
+/// fluid period is longer: the state is checked at every fluid update and at least this
+/// often.
+pub const CHECK_STEPS: u64 = 2000;
+
 /// What the run is doing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Stage {
@@ -426,7 +431,7 @@ impl<'a> Lagrangian<'a> {
     }
 
     /// One DEM step of the flow, with the fluid update when it is due. `Ok(true)` when the
-    /// fluid was updated, `Err` with the ending when the run is over. `solver.lagrangian.max_steps`
+    /// fluid was updated or the state checked (every [`CHECK_STEPS`] steps), `Err` with the ending when the run is over. `solver.lagrangian.max_steps`
     /// bounds the DEM steps of the whole run, deposition included.
     pub fn step_dem(&mut self) -> Result<bool, Ending> {
         let s = &self.cfg.settings;
@@ -438,6 +443,9 @@ impl<'a> Lagrangian<'a> {
             return Err(Ending::EndTime);
         }
         let update = self.steps.checked_rem(every) == Some(0);
+        // a fluid period of many thousand steps must not leave the state unchecked, nor the
+        // driver (progress, Ctrl-C) waiting, for all of them
+        let checkpoint = !update && self.steps.is_multiple_of(CHECK_STEPS);
         self.dem_step(update && fluid != FluidMode::Off);
         if update {
             let r = if fluid == FluidMode::Off { self.check() } else { self.fluid_update() };
@@ -446,10 +454,12 @@ impl<'a> Lagrangian<'a> {
                 self.write_vtk();
                 self.next_vtk += self.cfg.settings.numerics.vtk_period;
             }
+        } else if checkpoint {
+            self.check().map_err(Ending::Unstable)?;
         }
         self.steps += 1;
         self.time = self.steps as f64 * self.dem.dt();
-        Ok(update)
+        Ok(update || checkpoint)
     }
 
     /// DEM steps of the flow up to and including the next fluid update; `Some` when the
