@@ -106,7 +106,7 @@ impl FluidField {
         }
         // compared as floats before the cast: a particle flung far away (s huge, inf or
         // NaN) would saturate the cast and overflow k + 1
-        if !(s < (n - 1) as f64) {
+        if s.is_nan() || s >= (n - 1) as f64 {
             return self.u[n - 1];
         }
         let k = s as usize; // 0 < s < n - 1 here: truncation is the floor
