@@ -1,0 +1,339 @@
+//! Frictional-collisional granular stress: Johnson-Jackson elastic stress + kinetic theory.
+
+use std::fmt;
+
+use saltus_core::closure::Family;
+use saltus_core::{
+    register_model, Describe, GranularStress, KineticCoefficients, KineticTheory, Param, ParamError, ParamRange,
+    SaltationInput,
+};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+use super::kinetic::{
+    garzo_dufty as gd, saltation, ChialvoSundaresanG0, DragDissipation, RadialDistribution, RestitutionModel, Saltation,
+};
+
+/// Static friction mu_s of the Coulomb elastic shear stress tau_el = mu_s p_el.
+///
+/// TOML: a number (`static_friction = 0.35`) or the string `"from_mu_p"`, the fit of
+/// Chassagne et al. 2023 App. B eq B1, mu_s = 0.146 + 0.228 tanh(mu_p / 0.232), of the
+/// model's `friction` (0.36 at mu_p = 0.4).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum StaticFriction {
+    /// eq B1 of the interparticle friction
+    #[default]
+    FromMuP,
+    /// given value
+    Value(f64),
+}
+
+impl StaticFriction {
+    /// Keyword of [`StaticFriction::FromMuP`].
+    pub const KEYWORD: &'static str = "from_mu_p";
+
+    /// App. B eq B1: mu_s = 0.146 + 0.228 tanh(mu_p / 0.232).
+    #[inline]
+    pub fn fit(mu_p: f64) -> f64 {
+        0.146 + 0.228 * (mu_p / 0.232).tanh()
+    }
+
+    /// mu_s at interparticle friction `mu_p`.
+    #[inline]
+    pub fn value(self, mu_p: f64) -> f64 {
+        match self {
+            Self::FromMuP => Self::fit(mu_p),
+            Self::Value(v) => v,
+        }
+    }
+}
+
+impl Serialize for StaticFriction {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Self::FromMuP => s.serialize_str(Self::KEYWORD),
+            Self::Value(v) => s.serialize_f64(*v),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for StaticFriction {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl serde::de::Visitor<'_> for V {
+            type Value = StaticFriction;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, "a number or \"{}\"", StaticFriction::KEYWORD)
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<StaticFriction, E> {
+                Ok(StaticFriction::Value(v))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<StaticFriction, E> {
+                Ok(StaticFriction::Value(v as f64))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<StaticFriction, E> {
+                Ok(StaticFriction::Value(v as f64))
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<StaticFriction, E> {
+                if v == StaticFriction::KEYWORD {
+                    Ok(StaticFriction::FromMuP)
+                } else {
+                    Err(E::invalid_value(serde::de::Unexpected::Str(v), &self))
+                }
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// Frictional-collisional granular stress (Johnson & Jackson 1987 + kinetic theory)
+///
+/// ```text
+/// p_p = p_el + rho_p F1 T,   tau_p = mu_s p_el + rho_p d F2 sqrt(T) |gamma_dot|
+/// p_el = P0 (phi - phi_rlp)^3 / (phi_max - phi)^5  for phi >= phi_rlp, else 0
+/// q = -rho_p d F3 sqrt(T) dT/dz,  Gamma = rho_p/d F4' T^1.5,  J_int = -phi(1-phi) K c_J T
+/// ```
+///
+/// * Source: Chassagne, Bonamy & Chauchat 2023 (J. Fluid Mech. 964, A27) eqs 2.12-2.25,
+///   table 1, 3.2-3.13, App. B (mu_s), C (e_eff), D (c_J).
+/// * Defaults = the paper's PROPOSED model (table 1 right column): `restitution` and
+///   `friction` those of `[particles]` (0.7 and 0.4 by default), `p0 = 0.05` Pa, `phi_rlp = 0.57`, `phi_max = 0.635`,
+///   `static_friction = "from_mu_p"` (0.36), `g0 = { type = "chialvo_sundaresan_friction" }`,
+///   `restitution_model = { type = "jenkins_zhang", e_t = 0 }`,
+///   `saltation = { enabled = true, c0 = 5, sigma = 0.5 }`, `drag_dissipation = "quadratic"`.
+///   The INITIAL model (table 1 left column) is [`FrictionalCollisional::garzo_dufty_initial`].
+/// * Valid range: `restitution` in (0, 1], `friction` in [0, 2], `p0 > 0`,
+///   `0 < phi_rlp < phi_max < 1`, numeric `static_friction` in [0, 2].
+/// * Decisions: phi < 0 is evaluated as 0. For phi >= phi_max, g0, p_el, its derivative and
+///   F1..F3 (and F4 unless e_eff = 1) are +inf, never NaN. F4 uses e_eff, F1..F3 the bare e.
+///   The kinetic-part formulas are those of [`super::kinetic::garzo_dufty`].
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct FrictionalCollisional {
+    /// normal restitution coefficient e
+    pub restitution: f64,
+    /// interparticle (microscopic) friction coefficient mu_p
+    pub friction: f64,
+    /// elastic modulus P0 of eq 2.14 (Pa)
+    pub p0: f64,
+    /// random loose packing phi_rlp where the elastic pressure starts
+    pub phi_rlp: f64,
+    /// maximum packing phi_max where g0 and p_el diverge
+    pub phi_max: f64,
+    /// static friction of the elastic shear stress: number or "from_mu_p"
+    pub static_friction: StaticFriction,
+    /// dissipation by drag: "linear" (c_J = 3) or "quadratic" (3 + 2 C_D^inf/C_D)
+    pub drag_dissipation: DragDissipation,
+    /// radial distribution function
+    pub g0: RadialDistribution,
+    /// effective restitution in F4
+    pub restitution_model: RestitutionModel,
+    /// saltation correction of F2, F3
+    pub saltation: Saltation,
+}
+
+impl Default for FrictionalCollisional {
+    fn default() -> Self {
+        Self {
+            restitution: 0.7,
+            friction: 0.4,
+            p0: 0.05,
+            phi_rlp: 0.57,
+            phi_max: 0.635,
+            static_friction: StaticFriction::FromMuP,
+            drag_dissipation: DragDissipation::Quadratic,
+            g0: RadialDistribution::default(),
+            restitution_model: RestitutionModel::default(),
+            saltation: Saltation::default(),
+        }
+    }
+}
+
+impl FrictionalCollisional {
+    /// The paper's INITIAL model (table 1 left column, Garzo & Dufty 1999): g0 of
+    /// Chialvo-Sundaresan with a = 0.58, plain restitution, no saltation, linear drag
+    /// dissipation; elastic part and other parameters as the default.
+    pub fn garzo_dufty_initial() -> Self {
+        Self {
+            g0: RadialDistribution::ChialvoSundaresan(ChialvoSundaresanG0::default()),
+            restitution_model: RestitutionModel::Plain {},
+            saltation: Saltation::disabled(),
+            drag_dissipation: DragDissipation::Linear,
+            ..Self::default()
+        }
+    }
+
+    /// The Johnson-Jackson elastic pressure of this closure (eq 2.14).
+    #[inline]
+    pub fn elastic(&self) -> saltus_core::JohnsonJacksonElastic {
+        saltus_core::JohnsonJacksonElastic { p0: self.p0, phi_rlp: self.phi_rlp, phi_max: self.phi_max }
+    }
+
+    /// Radial distribution at `phi` (phi < 0 evaluated as 0).
+    #[inline]
+    pub fn g0_at(&self, phi: f64) -> f64 {
+        self.g0.g0(non_negative(phi), self.phi_max, self.friction)
+    }
+
+    /// Effective restitution e_eff used in F4.
+    #[inline]
+    pub fn effective_restitution(&self) -> f64 {
+        self.restitution_model.effective(self.restitution, self.friction)
+    }
+}
+
+/// phi < 0 -> 0, NaN kept.
+#[inline]
+fn non_negative(phi: f64) -> f64 {
+    if phi < 0.0 {
+        0.0
+    } else {
+        phi
+    }
+}
+
+impl Describe for FrictionalCollisional {
+    fn name(&self) -> &'static str {
+        "frictional_collisional"
+    }
+    fn source(&self) -> &'static str {
+        "Chassagne, Bonamy & Chauchat 2023 eqs 2.12-2.25, table 1, 3.2-3.13, App. B-D; Garzo & Dufty 1999; Johnson & Jackson 1987"
+    }
+    fn equation(&self) -> &'static str {
+        "p = P0 (phi-phi_rlp)^3/(phi_max-phi)^5 + rho_p F1 T, tau = mu_s p_el + rho_p d F2 sqrt(T) |gamma_dot|, Gamma = rho_p/d F4' T^1.5"
+    }
+    fn params(&self) -> Vec<Param> {
+        let mut v = vec![
+            Param::new(
+                "restitution",
+                self.restitution,
+                ParamRange::open_closed(0.0, 1.0),
+                "-",
+                "normal restitution coefficient e",
+            ),
+            Param::new(
+                "friction",
+                self.friction,
+                ParamRange::closed(0.0, 2.0),
+                "-",
+                "interparticle friction coefficient mu_p",
+            ),
+            Param::new(
+                "p0",
+                self.p0,
+                ParamRange::positive(),
+                "Pa",
+                "elastic modulus P0 of the Johnson-Jackson pressure",
+            ),
+            Param::new(
+                "phi_rlp",
+                self.phi_rlp,
+                ParamRange::open(0.0, 1.0),
+                "-",
+                "random loose packing where p_el starts",
+            ),
+            Param::new(
+                "phi_max",
+                self.phi_max,
+                ParamRange::open(0.0, 1.0),
+                "-",
+                "maximum packing where g0 and p_el diverge",
+            ),
+            Param::new(
+                "static_friction",
+                self.static_friction.value(self.friction),
+                ParamRange::closed(0.0, 2.0),
+                "-",
+                "Coulomb static friction mu_s (number, or \"from_mu_p\": eq B1 of friction)",
+            ),
+        ];
+        v.extend(self.g0.params().into_iter().map(|p| p.prefixed("g0")));
+        v.extend(self.restitution_model.params().into_iter().map(|p| p.prefixed("restitution_model")));
+        v.extend(self.saltation.params().into_iter().map(|p| p.prefixed("saltation")));
+        v
+    }
+    fn check_constraints(&self) -> Result<(), ParamError> {
+        if self.phi_rlp >= self.phi_max {
+            return Err(ParamError::new("phi_rlp", self.phi_rlp, format!("< phi_max ({})", self.phi_max)));
+        }
+        Ok(())
+    }
+}
+
+impl KineticTheory for FrictionalCollisional {
+    fn phi_max(&self) -> f64 {
+        self.phi_max
+    }
+
+    fn elastic_law(&self) -> saltus_core::JohnsonJacksonElastic {
+        self.elastic()
+    }
+
+    #[inline]
+    fn elastic_pressure(&self, phi: f64) -> f64 {
+        self.elastic().pressure(phi)
+    }
+
+    #[inline]
+    fn elastic_pressure_derivative(&self, phi: f64) -> f64 {
+        self.elastic().derivative(phi)
+    }
+
+    fn static_friction(&self) -> f64 {
+        self.static_friction.value(self.friction)
+    }
+
+    fn coefficients(&self, phi: f64, salt: Option<&SaltationInput>) -> KineticCoefficients {
+        let phi = non_negative(phi);
+        let e = self.restitution;
+        let g0 = self.g0.g0(phi, self.phi_max, self.friction);
+        let e_eff = self.effective_restitution();
+        let (eta_k, kappa_k) = (gd::eta_k(phi, e, g0), gd::kappa_k(phi, e, g0));
+        let (eta_k, kappa_k) = match salt {
+            Some(s) if self.saltation.enabled => {
+                let eta_salt = self.saltation.eta_salt(phi, s);
+                let kappa_salt = eta_salt / self.saltation.sigma;
+                (saltation::harmonic(eta_k, eta_salt), saltation::harmonic(kappa_k, kappa_salt))
+            }
+            _ => (eta_k, kappa_k),
+        };
+        KineticCoefficients {
+            g0,
+            f1: gd::f1(phi, e, g0),
+            f2: eta_k + gd::eta_cb(phi, e, g0),
+            f3: kappa_k + gd::kappa_cb(phi, e, g0),
+            f4: gd::f4(phi, e_eff, g0),
+            e_eff,
+        }
+    }
+
+    fn drag_dissipation_factor(&self, cd_inf: f64, cd: f64) -> f64 {
+        self.drag_dissipation.factor(cd_inf, cd)
+    }
+
+    fn saltation_enabled(&self) -> bool {
+        self.saltation.enabled
+    }
+}
+
+#[typetag::serde(name = "frictional_collisional")]
+impl GranularStress for FrictionalCollisional {
+    fn as_kinetic(&self) -> Option<&dyn KineticTheory> {
+        Some(self)
+    }
+
+    // the grains' restitution and friction are stated once, in [particles]; this model's
+    // own keys override them for the continuum description only
+    fn inherit(&mut self, given: &toml::Table, particles: &saltus_core::scene::Particles) {
+        if !given.contains_key("restitution") {
+            self.restitution = particles.restitution;
+        }
+        if !given.contains_key("friction") {
+            self.friction = particles.friction;
+        }
+    }
+}
+
+register_model!(Family::Granular, "frictional_collisional", GranularStress, FrictionalCollisional);
+
+#[cfg(test)]
+mod tests;
