@@ -149,8 +149,8 @@ fn parse_family(name: &str) -> anyhow::Result<Family> {
     })
 }
 
-/// A scene checked whole: the schema at load, then what its solver needs to start. `check`
-/// and `run` both load through here, so they refuse the same scenes.
+/// A scene checked whole: the schema at load, then what its solver needs to start (the
+/// set-up `run` does before any work, so `check` and `run` refuse the same scenes).
 fn load(scene: &std::path::Path, set: &[String]) -> anyhow::Result<Scene> {
     let s = Scene::from_file_with(scene, set)?;
     saltus_solvers::validate(&s)?;
@@ -174,7 +174,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             out!("{}", s.to_toml()?);
         }
         Command::Run { scene, set, out } => {
-            let s = load(&scene, &set)?;
+            // the solver's set-up inside `run` is `validate` (`resolve`), refused before
+            // any output is written: loading the schema is all that is left to do here
+            let s = Scene::from_file_with(&scene, &set)?;
             let out = out.unwrap_or_else(|| saltus::runner::default_out(&s));
             let bar = saltus::runner::progress_bar(std::io::stderr().is_terminal());
             if let Err(e) = saltus::runner::catch_interrupt() {
