@@ -47,7 +47,7 @@ fn channel_k_omega(c: &mut Criterion) {
         })
     });
     let d = &cfg.domain;
-    let grid = Grid::geometric(d.cells, d.water_depth, d.stretching).expect("grid");
+    let grid = Grid::geometric(cfg.cells, d.water_depth, d.stretching).expect("grid");
     let params = ColumnParams {
         pressure_gradient: scene.physics.pressure_gradient,
         top: TopBoundary::Symmetry,
@@ -57,7 +57,7 @@ fn channel_k_omega(c: &mut Criterion) {
         viscosity: scene.closures.viscosity.as_deref().expect("viscosity"),
         turbulence: scene.closures.turbulence.as_deref().expect("turbulence"),
     };
-    let zero = vec![0.0; d.cells];
+    let zero = vec![0.0; cfg.cells];
     let coupling = Coupling { phi: &zero, beta: &zero, u_p: &zero };
     group.bench_function("fluid_column_120_stretched", |b| {
         b.iter(|| {

@@ -145,7 +145,7 @@ impl<'a> Eulerian<'a> {
             buoyant_weight: (scene.particles.density - scene.fluid.density) * g * cos,
         };
         let d = &cfg.domain;
-        let n = d.cells;
+        let n = cfg.cells;
         let height = d.bed_height + d.water_depth;
         // uniform, or geometric from the wall (domain.stretching, checked by Config)
         let grid = Grid::geometric(n, height, d.stretching).map_err(|e| Error::OutOfRange {
