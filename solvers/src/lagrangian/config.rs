@@ -9,41 +9,23 @@ use super::contact::ContactModel;
 
 pub use saltus_core::scene::{Bottom, FluidMode, Initial, ParticleSpec, Surface};
 
-/// The box and the particles. Lengths in metres.
+/// What the DEM resolves of the box and the bed: the values whose defaults depend on the
+/// case. The rest of its geometry (walls, bottom, initial state, gas, particle list) is
+/// read from `[solver.lagrangian]` as resolved ([`Settings::numerics`]). Lengths in metres.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Domain {
     /// streamwise period L_x (m)
     pub length: f64,
     /// spanwise period L_y (m), or channel width with `side_walls`
     pub width: f64,
-    /// flat frictional walls at y = 0 and y = width instead of a periodic y
-    pub side_walls: bool,
-    /// what is below the particles
-    pub bottom: Bottom,
-    /// z period (bottom = "periodic") or height of the box the gas fills (m)
-    pub height: f64,
-    /// how particles start
-    pub initial: Initial,
     /// thickness of the mobile bed at rest (m), above the rough layer
     pub bed_height: f64,
     /// packing used to count the particles of the bed
     pub bed_phi: f64,
-    /// number of mobile particles; overrides the count from `bed_height` or `gas_phi`
-    pub particles: Option<usize>,
-    /// thickness of the fixed rough layer, in particle diameters
-    pub rough_layer: f64,
     /// clear water above the bed at rest (m)
     pub water_depth: f64,
     /// cells of the fluid column
     pub cells: usize,
-    /// where the free surface is put (deposited beds)
-    pub surface: Surface,
-    /// volume fraction of the gas (initial = "gas")
-    pub gas_phi: f64,
-    /// granular temperature of the gas (m^2/s^2)
-    pub gas_temperature: f64,
-    /// particles of `initial = "list"`
-    pub particle_list: Vec<ParticleSpec>,
 }
 
 /// The DEM's numerics and contact law.
@@ -94,20 +76,10 @@ impl Config {
         let domain = Domain {
             length: l.length.ok_or_else(|| missing("solver.lagrangian.length"))?,
             width: l.width.ok_or_else(|| missing("solver.lagrangian.width"))?,
-            side_walls: l.side_walls,
-            bottom: l.bottom,
-            height: l.height,
-            initial: l.initial,
             bed_height: dm.bed_height,
             bed_phi: dm.bed_phi.unwrap_or(DEM_BED_PHI),
-            particles: l.particles,
-            rough_layer: l.rough_layer,
             water_depth: dm.water_depth,
             cells: l.cells.ok_or_else(|| missing("solver.lagrangian.cells"))?,
-            surface: l.surface,
-            gas_phi: l.gas_phi,
-            gas_temperature: l.gas_temperature,
-            particle_list: l.particle_list.clone(),
         };
         let linear = p.contact.law == ContactModel::Linear;
         let settings = Settings {
@@ -136,8 +108,9 @@ impl Config {
     /// Height of the rough layer (m): `rough_layer` d with a rough bottom, else 0. The
     /// fluid column starts there.
     pub fn rough_height(&self, d: f64) -> f64 {
-        if self.domain.bottom == Bottom::Rough {
-            self.domain.rough_layer * d
+        let l = &self.settings.numerics;
+        if l.bottom == Bottom::Rough {
+            l.rough_layer * d
         } else {
             0.0
         }

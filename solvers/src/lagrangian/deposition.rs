@@ -53,7 +53,7 @@ impl Lagrangian<'_> {
     /// particles, forget the contacts, fit the column and start the flow's clocks.
     fn finish_deposition(&mut self) -> Result<(), Breakdown> {
         self.dem.body = self.flow_body;
-        if self.cfg.domain.bottom == Bottom::Rough {
+        if self.cfg.settings.numerics.bottom == Bottom::Rough {
             let (_, removed, fixed) = setup::bed_counts(&self.cfg, &self.mat);
             self.dem.p = setup::fix_rough_layer(&self.dem.p, removed, fixed, self.mat.rho_p);
         } else {
@@ -63,7 +63,8 @@ impl Lagrangian<'_> {
             }
         }
         self.dem.reset_topology();
-        if self.cfg.domain.surface == Surface::Deposit && self.cfg.settings.numerics.fluid != FluidMode::Off {
+        if self.cfg.settings.numerics.surface == Surface::Deposit && self.cfg.settings.numerics.fluid != FluidMode::Off
+        {
             self.fit_column_to_deposit()?;
         }
         let n = self.dem.p.len();

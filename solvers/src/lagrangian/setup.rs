@@ -40,8 +40,12 @@ pub fn sphere_volume(d: f64) -> f64 {
 pub fn make_box(cfg: &Config) -> Box3 {
     let dm = &cfg.domain;
     Box3 {
-        length: [dm.length, dm.width, if dm.bottom == Bottom::Periodic { dm.height } else { 0.0 }],
-        periodic: [true, !dm.side_walls, dm.bottom == Bottom::Periodic],
+        length: [
+            dm.length,
+            dm.width,
+            if cfg.settings.numerics.bottom == Bottom::Periodic { cfg.settings.numerics.height } else { 0.0 },
+        ],
+        periodic: [true, !cfg.settings.numerics.side_walls, cfg.settings.numerics.bottom == Bottom::Periodic],
     }
 }
 
@@ -49,10 +53,10 @@ pub fn make_box(cfg: &Config) -> Box3 {
 pub fn make_walls(cfg: &Config) -> Vec<Wall> {
     let dm = &cfg.domain;
     let mut w = Vec::new();
-    if matches!(dm.bottom, Bottom::Rough | Bottom::Wall) {
+    if matches!(cfg.settings.numerics.bottom, Bottom::Rough | Bottom::Wall) {
         w.push(Wall { axis: 2, position: 0.0, sign: 1.0 });
     }
-    if dm.side_walls {
+    if cfg.settings.numerics.side_walls {
         w.push(Wall { axis: 1, position: 0.0, sign: 1.0 });
         w.push(Wall { axis: 1, position: dm.width, sign: -1.0 });
     }
@@ -68,10 +72,10 @@ fn count(cfg: &Config, m: &Material, height: f64, phi: f64) -> usize {
 /// layer or are removed under it; and how many of them are removed and fixed.
 pub fn bed_counts(cfg: &Config, m: &Material) -> (usize, usize, usize) {
     let dm = &cfg.domain;
-    let mobile = dm.particles.unwrap_or_else(|| count(cfg, m, dm.bed_height, dm.bed_phi));
-    if dm.bottom == Bottom::Rough {
+    let mobile = cfg.settings.numerics.particles.unwrap_or_else(|| count(cfg, m, dm.bed_height, dm.bed_phi));
+    if cfg.settings.numerics.bottom == Bottom::Rough {
         let removed = count(cfg, m, 2.0 * m.d, dm.bed_phi);
-        let fixed = count(cfg, m, dm.rough_layer * m.d, dm.bed_phi).max(1);
+        let fixed = count(cfg, m, cfg.settings.numerics.rough_layer * m.d, dm.bed_phi).max(1);
         (mobile + removed + fixed, removed, fixed)
     } else {
         (mobile, 0, 0)
@@ -84,9 +88,9 @@ pub fn initial_particles(cfg: &Config, m: &Material, seed: u64, file: &str) -> R
     let r = 0.5 * m.d;
     let mut rng = stream(seed, SETUP_STREAM);
     let mut p = Particles::default();
-    match dm.initial {
+    match cfg.settings.numerics.initial {
         Initial::List => {
-            for s in &dm.particle_list {
+            for s in &cfg.settings.numerics.particle_list {
                 p.push(s.position, s.velocity, s.angular_velocity, r, m.rho_p, s.fixed);
             }
         }
@@ -95,12 +99,13 @@ pub fn initial_particles(cfg: &Config, m: &Material, seed: u64, file: &str) -> R
             // loose lattice, jittered, with small random velocities to break the symmetry
             let a = 1.1 * m.d;
             let nx = ((dm.length / a).floor() as usize).max(1);
-            let (y0, ny) = if dm.side_walls {
+            let (y0, ny) = if cfg.settings.numerics.side_walls {
                 (r, (((dm.width - m.d) / a).floor() as usize + 1).max(1))
             } else {
                 (0.0, ((dm.width / a).floor() as usize).max(1))
             };
-            let (sx, sy) = (dm.length / nx as f64, if dm.side_walls { a } else { dm.width / ny as f64 });
+            let (sx, sy) =
+                (dm.length / nx as f64, if cfg.settings.numerics.side_walls { a } else { dm.width / ny as f64 });
             let per_layer = nx * ny;
             let jitter = 0.02 * m.d;
             for k in 0..n {
@@ -108,10 +113,10 @@ pub fn initial_particles(cfg: &Config, m: &Material, seed: u64, file: &str) -> R
                 let (ix, iy) = (in_layer % nx, in_layer / nx);
                 let mut pos = [
                     (ix as f64 + 0.5) * sx + jitter * (2.0 * rng.gen::<f64>() - 1.0),
-                    y0 + if dm.side_walls { iy as f64 * sy } else { (iy as f64 + 0.5) * sy },
+                    y0 + if cfg.settings.numerics.side_walls { iy as f64 * sy } else { (iy as f64 + 0.5) * sy },
                     r + 0.05 * m.d + layer as f64 * a,
                 ];
-                if !dm.side_walls {
+                if !cfg.settings.numerics.side_walls {
                     pos[1] += jitter * (2.0 * rng.gen::<f64>() - 1.0);
                 }
                 let v = [0.0, 0.0, -0.01 * rng.gen::<f64>()];
@@ -119,8 +124,12 @@ pub fn initial_particles(cfg: &Config, m: &Material, seed: u64, file: &str) -> R
             }
         }
         Initial::Gas => {
-            let n = dm.particles.unwrap_or_else(|| count(cfg, m, dm.height, dm.gas_phi));
-            let (lx, ly, lz) = (dm.length, dm.width, dm.height);
+            let n = cfg
+                .settings
+                .numerics
+                .particles
+                .unwrap_or_else(|| count(cfg, m, cfg.settings.numerics.height, cfg.settings.numerics.gas_phi));
+            let (lx, ly, lz) = (dm.length, dm.width, cfg.settings.numerics.height);
             let a0 = (lx * ly * lz / n.max(1) as f64).cbrt();
             let mut dims = [(lx / a0).ceil() as usize, (ly / a0).ceil() as usize, (lz / a0).ceil() as usize];
             while dims[0] * dims[1] * dims[2] < n {
@@ -132,7 +141,7 @@ pub fn initial_particles(cfg: &Config, m: &Material, seed: u64, file: &str) -> R
                     "{file}: domain.gas_phi: {n} particles do not fit on a lattice in the box; lower gas_phi or enlarge the box"
                 )));
             }
-            let sd = dm.gas_temperature.sqrt();
+            let sd = cfg.settings.numerics.gas_temperature.sqrt();
             let mut vel = Vec::with_capacity(n);
             for _ in 0..n {
                 let mut normal = || -> f64 { StandardNormal.sample(&mut rng) };
@@ -149,7 +158,7 @@ pub fn initial_particles(cfg: &Config, m: &Material, seed: u64, file: &str) -> R
                     t += v[c] * v[c];
                 }
             }
-            let scale = if t > 0.0 { (dm.gas_temperature * 3.0 * nf / t).sqrt() } else { 0.0 };
+            let scale = if t > 0.0 { (cfg.settings.numerics.gas_temperature * 3.0 * nf / t).sqrt() } else { 0.0 };
             for (k, v) in vel.iter().enumerate() {
                 let (ix, iy, iz) = (k % dims[0], (k / dims[0]) % dims[1], k / (dims[0] * dims[1]));
                 let pos = [(ix as f64 + 0.5) * sp[0], (iy as f64 + 0.5) * sp[1], (iz as f64 + 0.5) * sp[2]];

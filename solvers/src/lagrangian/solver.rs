@@ -136,11 +136,12 @@ impl<'a> Lagrangian<'a> {
         let mut forces = FluidForces::new(n, scene.seed, scene.fluid.density, scene.fluid.viscosity, rho_p);
         forces.fallback_period = s.numerics.fluid_period;
         let cells = cfg.domain.cells;
-        let height = if s.numerics.fluid == FluidMode::Off || cfg.domain.bottom == super::config::Bottom::Periodic {
-            1.0
-        } else {
-            cfg.column_height()
-        };
+        let height =
+            if s.numerics.fluid == FluidMode::Off || cfg.settings.numerics.bottom == super::config::Bottom::Periodic {
+                1.0
+            } else {
+                cfg.column_height()
+            };
         let grid = Grid::uniform(cells, height).map_err(|e| Error::Invalid(format!("{file}: domain.cells: {e}")))?;
         let dz = grid.dz()[0];
         let mut column_params = None;
@@ -169,7 +170,7 @@ impl<'a> Lagrangian<'a> {
         };
         let fluid_every = ((s.numerics.fluid_period / dt).round() as u64).max(1);
         let pool = super::stepper::pool(s.numerics.threads, &scene.path)?;
-        let deposit = cfg.domain.initial == Initial::Bed;
+        let deposit = cfg.settings.numerics.initial == Initial::Bed;
         let settle_total = if deposit { (s.settle_time / dt).ceil() as u64 } else { 0 };
         let flow_body = dem.body;
         let mut dem = dem;
