@@ -55,6 +55,17 @@ fn check_refuses_exactly_what_run_refuses() {
         assert!(run.contains(key), "run --set {set}: {run}");
         assert!(!out.exists(), "run --set {set} started work before refusing");
     }
+    // refused only when the solver is set up (the gas lattice does not fit in the box):
+    // `check` and `run` go through the same set-up
+    let gas = "cases/verification/dem_homogeneous_cooling.toml";
+    let set = "solver.lagrangian.particles=50000";
+    let check = assert_clean_failure(&saltus(&["check", gas, "--set", set]));
+    let out = d.join("run_gas");
+    let run = assert_clean_failure(&saltus(&["run", gas, "--set", set, "--out", out.to_str().unwrap()]));
+    for e in [&check, &run] {
+        assert!(e.contains("solver.lagrangian.particles") && e.contains("do not fit"), "{e}");
+    }
+    assert!(!out.exists(), "run started work before refusing");
     // the same bad DEM inputs whichever solver is active: both tables are always checked
     for (set, key) in [
         ("solver.lagrangian.dt_safety=0.9", "solver.lagrangian.dt_safety"),

@@ -138,7 +138,7 @@ pub fn initial_particles(cfg: &Config, m: &Material, seed: u64, file: &str) -> R
             let sp = [lx / dims[0] as f64, ly / dims[1] as f64, lz / dims[2] as f64];
             if sp.iter().any(|&s| s <= m.d * 1.0001) {
                 return Err(Error::Invalid(format!(
-                    "{file}: domain.gas_phi: {n} particles do not fit on a lattice in the box; lower gas_phi or enlarge the box"
+                    "{file}: key `solver.lagrangian.particles`: {n} particles do not fit on a lattice in the box; lower particles or gas_phi, or enlarge the box"
                 )));
             }
             let sd = cfg.settings.numerics.gas_temperature.sqrt();

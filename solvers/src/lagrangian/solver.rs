@@ -142,7 +142,8 @@ impl<'a> Lagrangian<'a> {
             } else {
                 cfg.column_height()
             };
-        let grid = Grid::uniform(cells, height).map_err(|e| Error::Invalid(format!("{file}: domain.cells: {e}")))?;
+        let grid = Grid::uniform(cells, height)
+            .map_err(|e| Error::Invalid(format!("{file}: key `solver.lagrangian.cells`: {e}")))?;
         let dz = grid.dz()[0];
         let mut column_params = None;
         let column = if s.numerics.fluid == FluidMode::Coupled {
