@@ -19,7 +19,7 @@ pub mod run;
 pub mod validate;
 
 use std::fmt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use saltus_core::scene::{Scene, SolverKind};
 use saltus_core::Error;
@@ -71,17 +71,92 @@ pub fn resolve(scene: &Scene) -> Result<Box<dyn Stepper + '_>, Error> {
     })
 }
 
+/// How a run starts.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    /// continue from the checkpoint in this folder (or this file) instead of the scene's
+    /// initial state ([`run::checkpoint`])
+    pub restart: Option<PathBuf>,
+}
+
 /// Run `scene`, writing its outputs into `out`. `observer` sees every unit of work and
 /// may stop the run ([`Ending::Interrupted`]). Every ending, an unstable one included,
 /// writes the last state and returns it; `Err` only when the scene cannot be set up or
 /// the outputs cannot be written.
 pub fn run(scene: &Scene, out: &Path, observer: &mut dyn Observer) -> Result<RunOutcome, Error> {
-    let mut stepper = resolve(scene)?;
+    run_with(scene, out, observer, &RunOptions::default())
+}
+
+/// [`run()`], from a checkpoint when `options` says so. The output folder is made first,
+/// before the set-up and any deposition, with `timeseries.csv` in it; the time series,
+/// snapshots and checkpoints are written while the run goes ([`run::history`]). A
+/// checkpoint that is missing, damaged, of another solver or of a scene that differs in
+/// a key that matters is refused before anything is made, naming the file and the keys.
+pub fn run_with(
+    scene: &Scene,
+    out: &Path,
+    observer: &mut dyn Observer,
+    options: &RunOptions,
+) -> Result<RunOutcome, Error> {
+    let restart = options.restart.as_deref().map(run::checkpoint::read).transpose()?;
+    if let Some(r) = &restart {
+        check_restart(scene, r)?;
+    }
+    let created = !out.exists();
     // a folder that cannot be made fails before the work, not after it
     std::fs::create_dir_all(out).map_err(|source| Error::Io { file: out.to_path_buf(), source })?;
+    let mut stepper = match resolve(scene) {
+        Ok(s) => s,
+        Err(e) => {
+            if created {
+                // refused at set-up: leave no empty folder behind (fails harmlessly if not empty)
+                let _ = std::fs::remove_dir(out);
+            }
+            return Err(e);
+        }
+    };
+    if let Some(r) = &restart {
+        let fail = |m: String| Error::Invalid(format!("{}: {m}", r.file.display()));
+        if !stepper.restartable() || stepper.name() != r.solver {
+            return Err(fail(format!(
+                "written by the {} solver; the scene runs the {} solver, which {}",
+                r.solver,
+                stepper.name(),
+                if stepper.restartable() { "cannot take its state" } else { "has no restart" }
+            )));
+        }
+        stepper.restore(&r.state).map_err(fail)?;
+    }
+    let mut recorder = run::Recorder::start(out, scene, stepper.as_ref(), restart.as_ref())?;
     stepper.set_output_dir(out);
-    let (ending, wall) = run::drive(stepper.as_mut(), observer);
+    let (ending, wall) = run::drive_recorded(stepper.as_mut(), observer, Some(&mut recorder));
     let report = stepper.report(&ending, wall);
     output::write_run(out, scene, &report.profiles, &report.summary)?;
+    recorder.finish()?;
     Ok(RunOutcome { ending, report, wall })
+}
+
+/// Refuse a checkpoint written for another solver or a scene that differs from `scene`
+/// in a key that changes the run, naming the file and every such key.
+fn check_restart(scene: &Scene, r: &run::checkpoint::Restart) -> Result<(), Error> {
+    let solver = scene.solver.kind.name();
+    let file = r.file.display();
+    if r.solver != solver {
+        return Err(Error::Invalid(format!(
+            "{file}: written by a {} run; {} runs the {solver} solver (solver.type)",
+            r.solver,
+            scene.path.display()
+        )));
+    }
+    let now = scene.to_toml()?;
+    let keys = run::checkpoint::scene_differences(&r.scene, &now, solver)
+        .map_err(|e| Error::Invalid(format!("{file}: {e}")))?;
+    if keys.is_empty() {
+        return Ok(());
+    }
+    Err(Error::Invalid(format!(
+        "{file}: the scene differs from the checkpoint's in {}; {}: restart with the scene of the checkpoint (only output, meta, reference, end_time, max_steps, threads, vtk_period and stop_when_steady may change)",
+        keys.join(", "),
+        scene.path.display()
+    )))
 }

@@ -165,7 +165,7 @@ pub fn write_run(dir: &Path, scene: &Scene, profiles: &Profiles, summary: &Summa
             ("turbulence", name(cl.turbulence.as_deref().map(|m| m as &dyn saltus_core::Describe))),
             ("fluctuation", name(cl.fluctuation.as_deref().map(|m| m as &dyn saltus_core::Describe))),
         ],
-        files: vec!["profiles.csv", "summary.json", "scene.toml", "manifest.json"],
+        files: vec!["profiles.csv", "summary.json", "scene.toml", "manifest.json", "timeseries.csv"],
         wall_time_s: summary.wall_time_s,
     };
     let json = serde_json::to_string_pretty(&manifest).map_err(|e| Error::Invalid(format!("manifest: {e}")))?;
@@ -227,21 +227,29 @@ pub fn finite(x: f64) -> Option<f64> {
 /// Levels (m) below which the fractions `lo` and `hi` of the integral of `q dz` lie,
 /// interpolated linearly inside cells.
 pub fn flux_levels(faces: &[f64], q: &[f64], lo: f64, hi: f64) -> (f64, f64) {
-    let total: f64 = q.iter().zip(faces.windows(2)).map(|(q, w)| q * (w[1] - w[0])).sum();
+    flux_levels_by(q.len().min(faces.len().saturating_sub(1)), |i| faces[i], |i| q[i], lo, hi)
+}
+
+/// [`flux_levels`] over `n` cells with face `i` at `face(i)` and the flux density of cell
+/// `i` `q(i)`: for fields that are not stored as one slice (a product of two, a uniform
+/// grid), without allocating.
+pub fn flux_levels_by(n: usize, face: impl Fn(usize) -> f64, q: impl Fn(usize) -> f64, lo: f64, hi: f64) -> (f64, f64) {
+    let total: f64 = (0..n).map(|i| q(i) * (face(i + 1) - face(i))).sum();
     if total.abs() <= 0.0 || !total.is_finite() {
         return (f64::NAN, f64::NAN);
     }
     let level = |frac: f64| {
         let target = frac * total;
         let mut acc = 0.0;
-        for (q, w) in q.iter().zip(faces.windows(2)) {
-            let add = q * (w[1] - w[0]);
+        for i in 0..n {
+            let (a, b) = (face(i), face(i + 1));
+            let add = q(i) * (b - a);
             if (acc + add) / total >= frac && add != 0.0 {
-                return w[0] + (target - acc) / add * (w[1] - w[0]);
+                return a + (target - acc) / add * (b - a);
             }
             acc += add;
         }
-        faces[faces.len() - 1]
+        face(n)
     };
     (level(lo), level(hi))
 }

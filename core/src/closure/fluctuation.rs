@@ -21,7 +21,7 @@ pub struct TurbulencePoint {
 }
 
 /// Column-scale quantities (for the eddy turnover time of the DRW).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FlowScales {
     /// water depth above the bed (m)
     pub depth: f64,

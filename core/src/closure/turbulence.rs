@@ -98,7 +98,7 @@ pub struct TwoEquationInput<'a> {
 /// Terms of the k and omega equations per cell, structure of arrays, in the form
 /// d q / dt = d/dz (D dq/dz) + source - sink q, with source >= 0 and sink >= 0 so that an
 /// implicit sink keeps q positive under any time step.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct TwoEquationTerms {
     /// explicit source of k (m^2/s^3), >= 0
     pub k_source: Vec<f64>,

@@ -34,7 +34,10 @@ pub use solver::{
     Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver, SolverKind, Surface,
     MAX_TIME,
 };
-pub use tables::{Contact, ContactModel, Fluid, Meta, Output, Particles, Physics, Reference};
+pub use tables::{
+    Contact, ContactModel, Fluid, Meta, Output, Particles, Physics, Reference, MAX_SNAPSHOTS, MAX_TIMESERIES_ROWS,
+    TIMESERIES_ROWS,
+};
 
 /// Packing the DEM counts the particles of a bed with when `domain.bed_phi` is absent.
 pub const DEM_BED_PHI: f64 = 0.6;
@@ -255,6 +258,8 @@ impl Scene {
                 }),
             };
         }
+        let (end_time, _) = self.end_time();
+        self.output.resolve(end_time);
         let dir = self.path.parent().map(Path::to_path_buf).unwrap_or_default();
         for r in &mut self.reference {
             r.file = absolute(&dir, &r.file);
@@ -262,9 +267,19 @@ impl Scene {
         Ok(())
     }
 
+    /// End time of the active solver's run (s), with its key.
+    pub fn end_time(&self) -> (f64, &'static str) {
+        match self.solver.kind {
+            SolverKind::Eulerian => (self.solver.eulerian.end_time, "solver.eulerian.end_time"),
+            SolverKind::Lagrangian => (self.solver.lagrangian.end_time, "solver.lagrangian.end_time"),
+        }
+    }
+
     /// What the active solver needs beyond the ranges of its keys.
     fn check_active(&self) -> Result<()> {
         let f = self.path.as_path();
+        let (end_time, end_key) = self.end_time();
+        self.output.check(f, end_time, end_key)?;
         let key = |k: &str, m: String| Error::Key { file: f.into(), key: k.into(), message: m };
         match self.solver.kind {
             SolverKind::Eulerian => {

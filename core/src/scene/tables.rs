@@ -199,6 +199,69 @@ pub struct Output {
     /// output folder; `out/<meta.name>` when absent
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dir: Option<String>,
+    /// simulated time between two rows of `timeseries.csv` (s); default: the active
+    /// solver's end time / [`TIMESERIES_ROWS`], resolved at load
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub timeseries_interval: Option<f64>,
+    /// simulated time between two profile snapshots (s); 0 (the default) writes none
+    #[serde(default)]
+    pub snapshot_interval: f64,
+    /// simulated time between two checkpoints of a DEM run (s); 0 (the default) writes
+    /// one only when the run stops (interrupted or at its end)
+    #[serde(default)]
+    pub checkpoint_interval: f64,
+}
+
+/// Rows of `timeseries.csv` over the end time with the default interval.
+pub const TIMESERIES_ROWS: f64 = 1000.0;
+/// Most rows `output.timeseries_interval` may ask for over the end time.
+pub const MAX_TIMESERIES_ROWS: f64 = 1.0e7;
+/// Most snapshots or checkpoints `output.snapshot_interval` and
+/// `output.checkpoint_interval` may ask for over the end time.
+pub const MAX_SNAPSHOTS: f64 = 1.0e5;
+
+impl Output {
+    /// Fill the default interval of the time series for a run of `end_time` seconds.
+    pub(super) fn resolve(&mut self, end_time: f64) {
+        if self.timeseries_interval.is_none() {
+            self.timeseries_interval = Some(end_time / TIMESERIES_ROWS);
+        }
+    }
+
+    /// The intervals against the active solver's `end_time` (s), named by `end_key`: each
+    /// is a time, and none asks for more rows or files than a run can hold.
+    pub(super) fn check(&self, f: &Path, end_time: f64, end_key: &str) -> Result<()> {
+        let max = super::MAX_TIME;
+        if let Some(t) = self.timeseries_interval {
+            check(f, "output.timeseries_interval", t, ParamRange::open_closed(0.0, max))?;
+            at_least(f, "output.timeseries_interval", t, end_time, end_key, MAX_TIMESERIES_ROWS, "rows")?;
+        }
+        for (key, t) in [("output.snapshot_interval", self.snapshot_interval), ("output.checkpoint_interval", self.checkpoint_interval)] {
+            check(f, key, t, ParamRange::closed(0.0, max))?;
+            if t > 0.0 {
+                at_least(f, key, t, end_time, end_key, MAX_SNAPSHOTS, "files")?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Refuse an interval `t` at `key` that asks for more than `most` rows or files over
+/// `end_time`.
+fn at_least(f: &Path, key: &str, t: f64, end_time: f64, end_key: &str, most: f64, what: &str) -> Result<()> {
+    let least = end_time / most;
+    if t >= least {
+        return Ok(());
+    }
+    Err(crate::error::Error::OutOfRange {
+        file: f.into(),
+        key: key.into(),
+        value: crate::param::number(t),
+        allowed: format!(
+            "at least {end_key} / {most:e} = {} s (0 = off where allowed): at most {most:e} {what} per run",
+            crate::param::number(least)
+        ),
+    })
 }
 
 /// Reference data overlaid on the run's plots: `[reference]` for one file, or

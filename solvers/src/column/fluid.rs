@@ -14,7 +14,7 @@ use super::{ColumnError, Grid};
 ///
 /// All work arrays are allocated by [`FluidColumn::new`]; [`FluidColumn::step`] and
 /// [`FluidColumn::solve_steady`] do not allocate.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct FluidColumn {
     op: ColumnOperator,
     params: ColumnParams,

@@ -8,7 +8,7 @@ use super::ColumnError;
 /// Structure of arrays: faces `z_f[0..=n]`, centres `z_c[0..n]` (midpoints of their
 /// faces) and widths `dz[0..n]`. Non-uniform grids are supported throughout the column
 /// solver: every distance is taken from these arrays, never from a constant spacing.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Grid {
     faces: Vec<f64>,
     centres: Vec<f64>,

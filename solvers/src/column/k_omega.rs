@@ -47,7 +47,7 @@ pub struct TransportFailure {
 }
 
 /// The k and omega fields of a column with their solver storage (allocated once).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct KOmegaColumn {
     /// turbulent kinetic energy per cell (m^2/s^2)
     pub k: Vec<f64>,

@@ -30,7 +30,7 @@ impl Band for Tridiagonal {
 /// Second-order one-sided gradient at a wall from the wall value and the two nearest
 /// cell centres at distances `a < b`: du/ds(0) = c_w u_w + c_a u(a) + c_b u(b), exact for
 /// quadratics. c_a > 0 and c_b, c_w < 0, which keeps the operator an M-matrix.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WallStencil {
     /// weight of the wall value
     pub cw: f64,
@@ -48,7 +48,7 @@ impl WallStencil {
 }
 
 /// Grid metrics and the discrete operator of a column of `n` cells.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct ColumnOperator {
     grid: Grid,
     /// centre distance across each face: h[0] wall to first centre, h[n] last centre to top

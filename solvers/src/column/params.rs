@@ -5,7 +5,7 @@ use saltus_core::{EffectiveViscosity, Turbulence};
 use super::ColumnError;
 
 /// Boundary condition at the top of the column (z = H).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum TopBoundary {
     /// free surface: zero shear stress, du/dz = 0
     FreeSurface,
@@ -20,7 +20,7 @@ pub enum TopBoundary {
 }
 
 /// Physical and numerical parameters of a [`super::FluidColumn`].
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ColumnParams {
     /// fluid density rho_f (kg/m^3)
     pub density: f64,

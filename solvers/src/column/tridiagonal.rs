@@ -14,7 +14,7 @@
 /// only, the diffusive conductances are non-negative, and the no-slip wall row is strictly
 /// dominant. A zero or non-finite pivot (which cannot occur for such systems) is reported
 /// as an error with the row instead of producing infinities.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Tridiagonal {
     /// sub-diagonal (index i multiplies x[i-1])
     pub lower: Vec<f64>,

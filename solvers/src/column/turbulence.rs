@@ -25,7 +25,7 @@ pub fn friction_velocity(drive: f64, depth: f64) -> f64 {
 /// first evaluation). Relaxing a lagged nu_t is a Picard iteration; w = 0.5 turns the map
 /// of a fully turbulent mixing-length layer (nu_t <- C / nu_t, which oscillates with
 /// w = 1) into a Newton (Babylonian) one, and it does not change a steady state.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct EddyViscosity {
     nu_t: Vec<f64>,
     candidate: Vec<f64>,
@@ -101,7 +101,7 @@ pub struct KOmegaPhysics {
 
 /// k and omega of a two-equation closure with the per-cell inputs of their terms: the
 /// drag per unit particle volume (Cheng et al. eq 23), filled by the solver, and dphi/dz.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct KOmegaRun {
     /// k and omega
     pub col: KOmegaColumn,

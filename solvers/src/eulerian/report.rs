@@ -12,7 +12,7 @@
 use super::rheology::Rheology;
 use super::Eulerian;
 use crate::output::{self, Profiles, Summary};
-use crate::run::Ending;
+use crate::run::{Ending, Sample};
 use crate::RunReport;
 
 /// Derived cell profiles, see [`Eulerian::derived`].
@@ -37,13 +37,12 @@ impl Eulerian<'_> {
     /// velocity, the control number of the granular closure.
     pub fn derived(&self) -> Derived {
         let n = self.len();
-        let (s, co, c) = (&self.s, &self.co, self.c);
+        let (s, co) = (&self.s, &self.co);
         let nu_t = s.eddy.values();
         let mut out = Derived::default();
-        for (i, &nt) in nu_t.iter().enumerate().take(n) {
-            let eps = 1.0 - s.phi[i].max(0.0);
+        for i in 0..nu_t.len().min(n) {
             out.tau_p.push(0.5 * (co.tau_p[i] + co.tau_p[i + 1]));
-            out.tau_f.push(c.rho_f * eps * (c.nu_f * co.visc_ratio[i] + nt) * co.gamma_f[i]);
+            out.tau_f.push(self.fluid_shear_stress(i));
             let p = co.pres[i].p + co.overburden[i];
             out.p_p.push(p);
             let f = 0.5 * (s.flux[i] + s.flux[i + 1]);
@@ -55,6 +54,39 @@ impl Eulerian<'_> {
             out.control.push(if x.is_finite() { x } else { 0.0 });
         }
         out
+    }
+
+    /// Fluid shear stress, viscous + turbulent, of cell `i` (Pa).
+    fn fluid_shear_stress(&self, i: usize) -> f64 {
+        let (s, co, c) = (&self.s, &self.co, self.c);
+        let eps = 1.0 - s.phi[i].max(0.0);
+        c.rho_f * eps * (c.nu_f * co.visc_ratio[i] + s.eddy.values()[i]) * co.gamma_f[i]
+    }
+
+    /// The state as a row of the time series: qs, the largest fluid shear stress and the
+    /// 1 % level of the transport as the report computes them, and the steady residual.
+    pub(super) fn sample_row(&self) -> Sample {
+        let scene = self.scene;
+        let scales = output::TransportScales::new(
+            scene,
+            scene.particles.density,
+            scene.particles.diameter,
+            self.cfg.domain.water_depth,
+        );
+        let (phi, up, dz, faces) = (self.phi(), self.u_p(), self.dz(), self.faces());
+        let q = |i: usize| phi[i].max(0.0) * up[i];
+        let qs: f64 = (0..self.len()).map(|i| q(i) * dz[i]).sum();
+        let tau = (0..self.len()).fold(0.0f64, |a, i| a.max(self.fluid_shear_stress(i).abs()));
+        let (z1, _) = output::flux_levels_by(self.len(), |i| faces[i], q, 0.01, 0.99);
+        Sample {
+            time: self.time(),
+            qs: output::finite(qs),
+            qs_star: output::finite(scales.qs_star(qs)),
+            shields: output::finite(scales.shields(tau)),
+            bed_surface: output::finite(z1),
+            residual: output::finite(self.residual()),
+            steps: self.steps() as u64,
+        }
     }
 
     /// Profiles, summary and paragraph of the run as it is now, ended by `ending` after

@@ -10,7 +10,7 @@
 //! anything, and the next step starts from them.
 
 use super::Eulerian;
-use crate::run::{Breakdown, Ending, Phase, Progress, Stepper};
+use crate::run::{Breakdown, Ending, Phase, Progress, Sample, Stepper};
 use crate::RunReport;
 
 impl Eulerian<'_> {
@@ -102,5 +102,9 @@ impl Stepper for Eulerian<'_> {
 
     fn report(&self, ending: &Ending, wall: f64) -> RunReport {
         self.run_report(ending, wall)
+    }
+
+    fn sample(&self) -> Sample {
+        self.sample_row()
     }
 }

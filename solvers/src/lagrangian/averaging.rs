@@ -26,7 +26,7 @@ pub fn cap_volume(zc: f64, r: f64, h: f64) -> f64 {
 }
 
 /// Per-cell sums of one averaging pass.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct CellSums {
     /// sum of slice volumes (m^3)
     pub vol: Vec<f64>,

@@ -42,7 +42,7 @@
 pub use saltus_core::scene::ContactModel;
 
 /// Parameters of the contact law, resolved for the run.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactLaw {
     /// the law
     pub model: ContactModel,

@@ -30,7 +30,7 @@ use super::particles::{Box3, Particles};
 pub const CHUNK: usize = 256;
 
 /// A flat wall at `position` along `axis`; particles live on the side `sign` (+1: above).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Wall {
     /// 0, 1 or 2 (x, y, z)
     pub axis: usize,
@@ -45,7 +45,7 @@ pub const MAX_WALLS: usize = 3;
 
 /// The DEM state and its parameters. The coupled solver of this module reaches into it;
 /// everyone else reads it through its methods.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Dem {
     /// particles
     pub(super) p: Particles,
@@ -71,7 +71,10 @@ pub struct Dem {
     ext_torque: [Vec<f64>; 3],
     /// history of the wall contacts of each mobile particle
     wall_hist: Vec<[[f64; 3]; MAX_WALLS]>,
+    // per-step scratch, resized by every step: not part of a checkpoint
+    #[serde(skip)]
     pair_f: Vec<[f64; 3]>,
+    #[serde(skip)]
     pair_t: Vec<[f64; 3]>,
     /// a particle moved more than half the skin since the last build (set by the
     /// integration, so the check costs no extra pass)

@@ -37,7 +37,7 @@ use super::dem::CHUNK;
 use super::particles::Particles;
 
 /// Fluid fields the particles see, on the column's cells (uniform grid from z = `base`).
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct FluidField {
     /// height of the column bottom in particle coordinates (m): the top of the rough layer
     pub base: f64,
@@ -128,7 +128,7 @@ pub struct DragModels<'a> {
 
 /// Per-particle drag state and work arrays (all particles, fixed ones included: the
 /// fluid sees their drag).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct FluidForces {
     /// fluid density (kg/m^3)
     pub(super) rho_f: f64,

@@ -15,7 +15,7 @@
 use super::particles::{Box3, Particles};
 
 /// Pair list with history.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct NeighbourList {
     /// first particle of each pair
     pub i: Vec<u32>,
@@ -41,13 +41,20 @@ pub struct NeighbourList {
     pub skin: f64,
     /// number of builds
     pub builds: usize,
-    // work buffers
+    // work buffers, refilled by every build: not part of a checkpoint
+    #[serde(skip)]
     old_i_start: Vec<usize>,
+    #[serde(skip)]
     old_j: Vec<u32>,
+    #[serde(skip)]
     old_hist: Vec<[f64; 3]>,
+    #[serde(skip)]
     cell_start: Vec<usize>,
+    #[serde(skip)]
     cell_items: Vec<u32>,
+    #[serde(skip)]
     cell_of: Vec<u32>,
+    #[serde(skip)]
     fill: Vec<usize>,
 }
 

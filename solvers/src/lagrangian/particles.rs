@@ -2,7 +2,7 @@
 
 /// The simulation box: periodic in the directions flagged in `periodic`, bounded by walls
 /// or open otherwise.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Box3 {
     /// extent (m) in x, y, z; only meaningful along periodic directions (the period)
     pub length: [f64; 3],
@@ -26,7 +26,7 @@ impl Box3 {
 /// Spheres as a structure of arrays. Indices `0..n_mobile` are mobile particles,
 /// `n_mobile..len()` fixed ones (the rough bottom): fixed particles have zero inverse
 /// mass and inertia and are never integrated.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Particles {
     /// number of mobile particles (they come first)
     pub n_mobile: usize,

@@ -32,7 +32,7 @@ pub const MAX_SPEED: f64 = 100.0;
 pub const CHECK_STEPS: u64 = 2000;
 
 /// What the run is doing.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub(super) enum Stage {
     /// settling the bed under gravity, fluid at rest
     Deposition,
@@ -61,13 +61,13 @@ pub struct Lagrangian<'a> {
     pub(super) beta: Vec<f64>,
     pub(super) tau_t: Vec<f64>,
     pub(super) stats: Stats,
-    steady: Steady,
+    pub(super) steady: Steady,
     pub(super) cell_volume: f64,
     pub(super) fluid_every: u64,
     /// time of the flow (after the deposition) (s)
-    time: f64,
+    pub(super) time: f64,
     /// DEM steps of the flow
-    steps: u64,
+    pub(super) steps: u64,
     pub(super) stage: Stage,
     /// DEM steps of the deposition taken, and to take
     pub(super) settle_steps: u64,
@@ -78,7 +78,7 @@ pub struct Lagrangian<'a> {
     rho_f: f64,
     pub(super) bed_surface: f64,
     vtk_dir: Option<PathBuf>,
-    vtk_count: usize,
+    pub(super) vtk_count: usize,
     pub(super) next_vtk: f64,
     pub(super) seed: u64,
     pub(super) zero_faces: Vec<f64>,
@@ -89,6 +89,8 @@ pub struct Lagrangian<'a> {
     /// wall clock of the flow phase: its start and the time spent up to the last step (s)
     pub(super) flow_started: Option<Instant>,
     pub(super) flow_wall: f64,
+    /// wall-clock time of the flow before a restart (s)
+    pub(super) flow_wall_before: f64,
 }
 
 impl<'a> Lagrangian<'a> {
@@ -208,6 +210,7 @@ impl<'a> Lagrangian<'a> {
             pool,
             flow_started: None,
             flow_wall: 0.0,
+            flow_wall_before: 0.0,
             mat,
             rho_f: scene.fluid.density,
             bed_surface: cfg.bed_surface(),

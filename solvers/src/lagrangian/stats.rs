@@ -16,7 +16,7 @@
 use super::averaging::CellSums;
 
 /// Running sums of the profiles.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct Stats {
     /// samples taken
     pub samples: usize,
@@ -130,7 +130,7 @@ impl Stats {
 
 /// Steady-state test on the transport rate: window means compared between consecutive
 /// windows.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct Steady {
     window: f64,
     tolerance: f64,

@@ -7,8 +7,10 @@ use std::time::Instant;
 
 use saltus_core::Error;
 
+use super::config::FluidMode;
 use super::solver::{Lagrangian, Stage};
-use crate::run::{Ending, Phase, Progress, Stepper};
+use crate::output::{self, finite};
+use crate::run::{Ending, Phase, Progress, Sample, Stepper};
 use crate::RunReport;
 
 /// Run `f` in `pool` (the caller's pool when `None`).
@@ -50,7 +52,7 @@ impl Lagrangian<'_> {
             Stage::Flow => {
                 let started = *self.flow_started.get_or_insert_with(Instant::now);
                 let ending = self.advance();
-                self.flow_wall = started.elapsed().as_secs_f64();
+                self.flow_wall = self.flow_wall_before + started.elapsed().as_secs_f64();
                 ending
             }
         }
@@ -98,5 +100,43 @@ impl Stepper for Lagrangian<'_> {
 
     fn set_output_dir(&mut self, dir: &Path) {
         self.set_vtk_dir(&dir.join("vtk"));
+    }
+
+    /// The transport of the last fluid update (the particle sums it averaged), the largest
+    /// fluid shear stress of the column, the level below which 1 % of that transport flows
+    /// and the relative change of the steady-state windows. Without fluid there are no
+    /// averages: only the time and the steps.
+    fn sample(&self) -> Sample {
+        let mut s = Sample { time: self.time(), residual: self.steady().change(), steps: self.steps(), ..Sample::default() };
+        if self.config().settings.numerics.fluid == FluidMode::Off {
+            return s;
+        }
+        let mat = self.material();
+        let scales = output::TransportScales::new(self.scene(), mat.rho_p, mat.d, self.config().domain.water_depth);
+        let dz = self.dz();
+        let flux = &self.sums.v[0];
+        // sum over the slices of V v_x, over the bed area: the transport per unit width
+        let qs = flux.iter().sum::<f64>() / (self.cell_volume() / dz);
+        s.qs = finite(qs);
+        s.qs_star = finite(scales.qs_star(qs));
+        if let Some(col) = self.column() {
+            let tau = col.shear_stress().iter().fold(0.0f64, |a, t| a.max(t.abs()));
+            s.shields = finite(scales.shields(tau));
+        }
+        let (z1, _) = output::flux_levels_by(flux.len(), |i| i as f64 * dz, |i| flux[i], 0.01, 0.99);
+        s.bed_surface = finite(z1);
+        s
+    }
+
+    fn save(&self, out: &mut Vec<u8>) -> Result<(), String> {
+        self.save_state(out)
+    }
+
+    fn restore(&mut self, state: &[u8]) -> Result<(), String> {
+        self.restore_state(state)
+    }
+
+    fn restartable(&self) -> bool {
+        true
     }
 }

@@ -9,14 +9,20 @@
 //! last state in the stepper so that the caller can report it. Every run ends with one
 //! [`Ending`]; a breakdown is one [`Breakdown`] whichever solver met it.
 
+pub mod checkpoint;
+pub mod history;
+
 use std::borrow::Cow;
 use std::fmt;
 use std::path::Path;
 use std::time::Instant;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
+use crate::output::Profiles;
 use crate::RunReport;
+
+pub use history::Recorder;
 
 /// Where a run went bad.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -117,7 +123,7 @@ impl Ending {
 }
 
 /// What the solver is doing.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Phase {
     /// set-up work before the flow (the DEM deposition)
@@ -143,6 +149,27 @@ pub struct Progress {
     /// relative change of the transport rate between windows for the DEM); `None` before
     /// the solver has one
     pub residual: Option<f64>,
+}
+
+/// The state of a run as one row of `timeseries.csv`, read without advancing anything.
+/// A figure the state does not define (no transport measured yet, no density contrast)
+/// is `None` and written as an empty cell.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Sample {
+    /// simulated time of the flow (s)
+    pub time: f64,
+    /// transport rate per unit width (m^2/s), of the state as it is (not time-averaged)
+    pub qs: Option<f64>,
+    /// qs / sqrt((s - 1) g d^3)
+    pub qs_star: Option<f64>,
+    /// largest fluid shear stress over (rho_p - rho_f) g d
+    pub shields: Option<f64>,
+    /// level below which 1 % of qs flows (m)
+    pub bed_surface: Option<f64>,
+    /// the solver's steady-state residual ([`Progress::residual`])
+    pub residual: Option<f64>,
+    /// steps of the flow
+    pub steps: u64,
 }
 
 /// What the observer tells the driver.
@@ -173,9 +200,35 @@ pub trait Stepper {
 
     /// Where the run's outputs go, for a solver that writes some during the run (the
     /// DEM's VTK snapshots); told once before the first step. An extension of the
-    /// argmin-like loop: checkpoints and snapshots belong to the solver, their folder to
+    /// argmin-like loop: the solver's own files belong to the solver, their folder to
     /// the caller.
     fn set_output_dir(&mut self, _dir: &Path) {}
+
+    /// The state as a row of the time series (flow phase only: the driver samples
+    /// nothing during set-up work).
+    fn sample(&self) -> Sample;
+
+    /// Profiles of the state as it is now, the ones [`Stepper::report`] writes: the
+    /// driver's profile snapshots.
+    fn profiles(&self) -> Profiles {
+        self.report(&Ending::EndTime, 0.0).profiles
+    }
+
+    /// Append to `out` everything a continuation needs to go on bit for bit from the state
+    /// as it is now ([`Stepper::restore`]); `Err` for a solver without restart.
+    fn save(&self, _out: &mut Vec<u8>) -> Result<(), String> {
+        Err(format!("the {} solver writes no checkpoint", self.name()))
+    }
+
+    /// Take the state [`Stepper::save`] wrote, in a stepper set up from the same scene.
+    fn restore(&mut self, _state: &[u8]) -> Result<(), String> {
+        Err(format!("the {} solver cannot restart from a checkpoint", self.name()))
+    }
+
+    /// Whether [`Stepper::save`] and [`Stepper::restore`] work.
+    fn restartable(&self) -> bool {
+        false
+    }
 }
 
 /// Something that watches a run.
@@ -202,6 +255,18 @@ impl Observer for Quiet {
 /// Drive `stepper` until it ends or `observer` stops it. Returns the ending and the
 /// wall-clock time (s); the stepper keeps its last state.
 pub fn drive(stepper: &mut dyn Stepper, observer: &mut dyn Observer) -> (Ending, f64) {
+    drive_recorded(stepper, observer, None)
+}
+
+/// [`drive`], with `recorder` (when given) sampling the time series, the snapshots and
+/// the checkpoints after every unit of work at their cadence, and the last state at the
+/// ending. The recorder keeps its first write error for the caller
+/// ([`Recorder::finish`]): a full disk does not stop a long run.
+pub fn drive_recorded(
+    stepper: &mut dyn Stepper,
+    observer: &mut dyn Observer,
+    mut recorder: Option<&mut Recorder>,
+) -> (Ending, f64) {
     let start = Instant::now();
     let ending = loop {
         if let Some(e) = stepper.step() {
@@ -209,17 +274,23 @@ pub fn drive(stepper: &mut dyn Stepper, observer: &mut dyn Observer) -> (Ending,
             observer.observe(&stepper.progress());
             break e;
         }
+        if let Some(r) = recorder.as_deref_mut() {
+            r.after_unit(stepper);
+        }
         if observer.observe(&stepper.progress()) == Control::Stop {
             break Ending::Interrupted;
         }
     };
+    if let Some(r) = recorder {
+        r.at_end(stepper, &ending);
+    }
     (ending, start.elapsed().as_secs_f64())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::output::{Profiles, Summary};
+    use crate::output::Summary;
 
     /// Counts to `n` and ends at the end time, or breaks down at `bad`.
     struct Counter {
@@ -254,6 +325,9 @@ mod tests {
                 dt: 1.0,
                 residual: None,
             }
+        }
+        fn sample(&self) -> Sample {
+            Sample { time: self.n as f64, steps: self.n, ..Sample::default() }
         }
         fn report(&self, ending: &Ending, _: f64) -> RunReport {
             RunReport {
