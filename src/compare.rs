@@ -390,7 +390,7 @@ fn run_variant(cmp: &Comparison, v: &Variant, out: &Path, bars: &MultiProgress) 
     scene.meta.name = format!("{} [{}]", scene.meta.name, v.name);
     let bar = bars.add(ProgressBar::hidden());
     runner::style_bar(&bar, &v.name);
-    let outcome = runner::run_scene(&scene, &dir, &bar);
+    let outcome = runner::run_scene(&scene, &dir, &bar, &runner::RunSettings::default());
     bars.remove(&bar);
     run.report = outcome.report;
     run.error = outcome.error.map(|e| e.to_string());

@@ -40,6 +40,7 @@ enum Command {
         set: Vec<String>,
     },
     /// Run a scene with its solver and write its outputs.
+    #[command(after_help = EXIT_CODES)]
     Run {
         /// scene file
         scene: PathBuf,
@@ -49,9 +50,25 @@ enum Command {
         /// output folder (default: the scene's output.dir, else out/<scene name>)
         #[arg(long)]
         out: Option<PathBuf>,
+        /// continue the DEM run whose output folder (holding checkpoint.bin) is DIR, bit for
+        /// bit as if it had not stopped; the scene must be the checkpoint's (the end time,
+        /// step cap, threads and [output] may change)
+        #[arg(long, value_name = "DIR")]
+        restart: Option<PathBuf>,
+        /// wall-clock seconds between two progress lines when stderr is not a terminal
+        #[arg(long, value_name = "SECONDS", default_value_t = saltus::runner::LOG_INTERVAL)]
+        log_interval: f64,
+        /// print nothing but errors: no progress, no warnings, no summary paragraph (the
+        /// outputs are written as always; --json still prints the summary)
+        #[arg(long, short)]
+        quiet: bool,
+        /// print the summary (summary.json) on stdout as JSON, and nothing else on stdout
+        #[arg(long)]
+        json: bool,
     },
     /// Run several variants of one scene in parallel and compare them: a table of their
     /// summaries (comparison.csv) and their profiles on one figure (comparison.png).
+    #[command(after_help = EXIT_CODES)]
     Compare {
         /// compare file: `base` scene, `[meta]`, `[[variant]]` tables with `name` and `set`
         file: PathBuf,
@@ -105,6 +122,12 @@ enum ClosureCommand {
     },
 }
 
+/// Exit codes of `run` and `compare`, in their help.
+const EXIT_CODES: &str = "Exit codes: 0 the run ended (steady, end_time or max_steps), 2 bad input or outputs that \
+cannot be written (or a failed compare variant), 3 the run stopped unstable (its last good state is written), 130 \
+interrupted by Ctrl-C, SIGINT or SIGTERM (the state so far is written, with a DEM checkpoint; a second interrupt quits \
+at once).";
+
 /// `print!` that treats a closed stdout (`saltus run ... | head`) as the end of the output
 /// instead of panicking: the outputs are already on disk by then.
 macro_rules! out {
@@ -135,7 +158,7 @@ fn main() -> ExitCode {
             saltus::errln!("error: {e:#}");
             // a run stopped early wrote its outputs and says how it stopped; anything
             // else is a failure before or around the work
-            ExitCode::from(e.downcast_ref::<saltus::runner::Stopped>().map_or(2, |s| s.code))
+            ExitCode::from(e.downcast_ref::<saltus::runner::Stopped>().map_or(saltus::runner::EXIT_BAD_INPUT, |s| s.code))
         }
     }
 }
@@ -173,28 +196,42 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             outln!("# {} resolved: every default filled in, ranges and closure needs checked", scene.display());
             out!("{}", s.to_toml()?);
         }
-        Command::Run { scene, set, out } => {
+        Command::Run { scene, set, out, restart, log_interval, quiet, json } => {
+            if !(log_interval.is_finite() && log_interval > 0.0 && log_interval <= 1e9) {
+                anyhow::bail!("--log-interval {log_interval}: must be a number of seconds in (0, 1e9]");
+            }
             // the solver's set-up inside `run` is `validate` (`resolve`), refused before
             // any output is written: loading the schema is all that is left to do here
             let s = Scene::from_file_with(&scene, &set)?;
             let out = out.unwrap_or_else(|| saltus::runner::default_out(&s));
-            let bar = saltus::runner::progress_bar(std::io::stderr().is_terminal());
+            let bar = saltus::runner::progress_bar(!quiet && std::io::stderr().is_terminal());
             if let Err(e) = saltus::runner::catch_interrupt() {
-                saltus::errln!("warning: {e:#}; Ctrl-C ends the run without writing its outputs");
+                saltus::errln!("warning: {e:#}; an interrupt ends the run without writing its outputs");
             }
-            let outcome = saltus::runner::run_scene(&s, &out, &bar);
-            for w in &outcome.warnings {
-                saltus::errln!("warning: {w}");
+            let settings = saltus::runner::RunSettings {
+                restart,
+                log_every: (!quiet).then(|| std::time::Duration::from_secs_f64(log_interval)),
+            };
+            let outcome = saltus::runner::run_scene(&s, &out, &bar, &settings);
+            if !quiet {
+                for w in &outcome.warnings {
+                    saltus::errln!("warning: {w}");
+                }
             }
             let Some(report) = &outcome.report else {
                 anyhow::bail!("{}", outcome.error.unwrap_or_else(|| "the run failed".into()));
             };
             // the last state is reported whatever the ending; an early stop then sets
             // the exit code (see `saltus::runner::Stopped`)
-            outln!("{report}");
-            outln!("outputs: {}", out.display());
-            if let Some(png) = &outcome.figure {
-                outln!("figure:  {}", png.display());
+            let figure = outcome.figure.as_ref().map_or_else(String::new, |p| format!("\nfigure:  {}", p.display()));
+            let paragraph = format!("{report}\noutputs: {}{figure}", out.display());
+            if json {
+                outln!("{}", serde_json::to_string_pretty(&report.summary)?);
+                if !quiet {
+                    saltus::errln!("{paragraph}");
+                }
+            } else if !quiet {
+                outln!("{paragraph}");
             }
             if let Some(stopped) = outcome.stopped(&s, &out) {
                 return Err(stopped.into());
@@ -203,6 +240,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Compare { file, set, out } => {
             let cmp = saltus::compare::load(&file, &set)?;
             let out = out.unwrap_or_else(|| saltus::compare::default_out(&cmp));
+            if let Err(e) = saltus::runner::catch_interrupt() {
+                saltus::errln!("warning: {e:#}; an interrupt ends the comparison without writing its outputs");
+            }
             let report = saltus::compare::run(&cmp, &out, std::io::stderr().is_terminal())?;
             for w in &report.warnings {
                 saltus::errln!("warning: {w}");
@@ -212,6 +252,17 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             outln!("table:   {}", report.table.display());
             if let Some(png) = &report.figure {
                 outln!("figure:  {}", png.display());
+            }
+            if saltus::runner::interrupted() {
+                return Err(saltus::runner::Stopped {
+                    code: saltus::runner::EXIT_INTERRUPTED,
+                    message: format!(
+                        "{}: interrupted; each variant wrote the state it had reached into {}",
+                        file.display(),
+                        out.display()
+                    ),
+                }
+                .into());
             }
             let failed = report.failures();
             if failed > 0 {

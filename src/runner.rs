@@ -19,11 +19,32 @@ use crate::table::Table;
 /// File name of the profile figure written next to the solver's outputs.
 pub const FIGURE: &str = "profiles.png";
 
+/// Exit code of bad input (scene, overrides, `--restart`) or outputs that cannot be
+/// written.
+pub const EXIT_BAD_INPUT: u8 = 2;
 /// Exit code of a run that went unstable (its last good state is written).
-pub const EXIT_UNSTABLE: u8 = 1;
-/// Exit code of a run stopped by Ctrl-C (its state at that time is written), as a shell
-/// reports a process ended by SIGINT.
+pub const EXIT_UNSTABLE: u8 = 3;
+/// Exit code of a run stopped by Ctrl-C, SIGINT or SIGTERM (its state at that time is
+/// written, with a checkpoint for the DEM), as a shell reports a process ended by SIGINT.
 pub const EXIT_INTERRUPTED: u8 = 130;
+
+/// Default wall time between two progress lines when stderr is no terminal (s).
+pub const LOG_INTERVAL: f64 = 30.0;
+
+/// How `saltus run` (and each variant of `saltus compare`) runs and tells its progress.
+#[derive(Clone, Debug)]
+pub struct RunSettings {
+    /// continue from the checkpoint in this folder (`--restart`)
+    pub restart: Option<PathBuf>,
+    /// wall time between two progress lines on a hidden bar; `None`: no lines (`--quiet`)
+    pub log_every: Option<Duration>,
+}
+
+impl Default for RunSettings {
+    fn default() -> Self {
+        Self { restart: None, log_every: Some(Duration::from_secs_f64(LOG_INTERVAL)) }
+    }
+}
 
 /// What a run left behind.
 #[derive(Debug)]
@@ -76,23 +97,32 @@ impl RunOutcome {
                     out.display()
                 ),
             }),
-            Ending::Interrupted => Some(Stopped {
-                code: EXIT_INTERRUPTED,
-                message: format!(
-                    "{file}: interrupted at t = {t:.6} s; the state at that time is written to {}{drawn}",
-                    out.display()
-                ),
-            }),
+            Ending::Interrupted => {
+                let resume = if out.join(saltus_solvers::run::checkpoint::FILE).is_file() {
+                    format!("; continue with `saltus run {file} --restart {}` (and the same --set options)", out.display())
+                } else {
+                    String::new()
+                };
+                Some(Stopped {
+                    code: EXIT_INTERRUPTED,
+                    message: format!(
+                        "{file}: interrupted at t = {t:.6} s of flow; the state at that time is written to {}{drawn}{resume}",
+                        out.display()
+                    ),
+                })
+            }
             Ending::Steady | Ending::EndTime | Ending::MaxSteps => None,
         }
     }
 }
 
-/// Set by Ctrl-C: runs in progress stop after their current unit of work.
+/// Set by Ctrl-C, SIGINT or SIGTERM: runs in progress stop after their current unit of
+/// work.
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 
-/// Catch Ctrl-C: the first one stops the runs in progress through their observer (each
-/// writes its outputs, ending `interrupted`), a second one quits at once with
+/// Catch Ctrl-C, SIGINT, SIGTERM (a batch system's time limit) and SIGHUP: the first one
+/// stops the runs in progress through their observer (each writes its outputs, ending
+/// `interrupted`, and the DEM a checkpoint), a second one quits at once with
 /// [`EXIT_INTERRUPTED`]. Call once per process.
 pub fn catch_interrupt() -> anyhow::Result<()> {
     ctrlc::set_handler(|| {
@@ -100,10 +130,10 @@ pub fn catch_interrupt() -> anyhow::Result<()> {
             std::process::exit(EXIT_INTERRUPTED.into());
         }
         crate::errln!(
-            "\ninterrupted: stopping after the current step and writing the outputs (Ctrl-C again to quit at once)"
+            "\ninterrupted: stopping after the current step and writing the outputs (interrupt again to quit at once)"
         );
     })
-    .context("cannot catch Ctrl-C")
+    .context("cannot catch Ctrl-C and SIGTERM")
 }
 
 /// Whether Ctrl-C was pressed.
@@ -112,7 +142,7 @@ pub fn interrupted() -> bool {
 }
 
 /// A progress bar over simulated time, drawn on stderr when `visible`, hidden otherwise
-/// (then [`run_scene`] prints a progress line every [`LOG_EVERY`] instead).
+/// (then [`run_scene`] prints a progress line every [`RunSettings::log_every`] instead).
 pub fn progress_bar(visible: bool) -> ProgressBar {
     let target = if visible { ProgressDrawTarget::stderr() } else { ProgressDrawTarget::hidden() };
     let bar = ProgressBar::with_draw_target(None, target);
@@ -121,59 +151,88 @@ pub fn progress_bar(visible: bool) -> ProgressBar {
 }
 
 /// Style `bar` as a run's progress bar; `prefix` goes before it (a variant name in
-/// `saltus compare`).
+/// `saltus compare`). Until the run reports its first progress, the bar is a line that
+/// says it is being set up (no empty bar).
 pub fn style_bar(bar: &ProgressBar, prefix: &str) {
-    let template = if prefix.is_empty() {
-        "[{elapsed_precise}] {bar:30.cyan/blue} {msg}"
-    } else {
-        "{prefix:>24.bold} [{elapsed_precise}] {bar:30.cyan/blue} {msg}"
-    };
-    let style = ProgressStyle::with_template(template).expect("valid progress template").progress_chars("=> ");
-    bar.set_style(style);
     bar.set_prefix(prefix.to_string());
+    bar.set_style(template(prefix, "[{elapsed_precise}] {msg}"));
+    bar.set_message("setting up");
+}
+
+fn template(prefix: &str, body: &str) -> ProgressStyle {
+    let t = if prefix.is_empty() { body.to_string() } else { format!("{{prefix:>24.bold}} {body}") };
+    // the templates are constants of this file: a bad one is a bug, drawn as plain text
+    ProgressStyle::with_template(&t).unwrap_or_else(|_| ProgressStyle::default_bar()).progress_chars("=> ")
 }
 
 /// Positions of the progress bar per simulated second.
 const TICKS_PER_SECOND: f64 = 1000.0;
 
-/// Wall time between two progress lines when stderr is no terminal (a log, CI).
-pub const LOG_EVERY: Duration = Duration::from_secs(10);
+/// Name of a phase in the progress.
+pub fn phase_name(phase: Phase) -> &'static str {
+    match phase {
+        Phase::Setup => "deposition",
+        Phase::Flow => "flow",
+    }
+}
 
 /// One line of progress: phase, time, step, time step and, once there is one, the
 /// residual.
 pub fn describe(p: &Progress) -> String {
-    let phase = match p.phase {
-        Phase::Setup => "deposition",
-        Phase::Flow => "flow",
-    };
-    let mut s = format!("{phase} t = {:.3} / {:.3} s  step {}  dt = {:.2e} s", p.time, p.end_time, p.steps, p.dt);
+    let mut s = format!(
+        "{} t = {:.3} / {:.3} s  step {}  dt = {:.2e} s",
+        phase_name(p.phase),
+        p.time,
+        p.end_time,
+        p.steps,
+        p.dt
+    );
     if let Some(r) = p.residual {
         s.push_str(&format!("  residual {r:.2e}"));
     }
     s
 }
 
-/// Run `scene` into `out`, showing progress on `bar` (see [`progress_bar`]; a hidden bar
-/// gets a line on stderr every [`LOG_EVERY`]), then draw `profiles.png` in `out` from
-/// the state the run returned, whatever its ending. Ctrl-C (see [`catch_interrupt`])
-/// stops the run with its outputs written. Reference data that cannot be read gives a
-/// warning, not a failure.
-pub fn run_scene(scene: &Scene, out: &Path, bar: &ProgressBar) -> RunOutcome {
+/// Wall time left in the phase at its pace so far (s): `None` before any progress.
+fn eta(p: &Progress, phase_wall: f64) -> Option<f64> {
+    let left = (p.end_time - p.time).max(0.0);
+    (p.time > 0.0 && phase_wall > 0.0).then(|| left * phase_wall / p.time).filter(|e| e.is_finite())
+}
+
+/// Run `scene` into `out` as `settings` say, showing progress on `bar` (see
+/// [`progress_bar`]; a hidden bar gets a line on stderr every
+/// [`RunSettings::log_every`]), then draw `profiles.png` in `out` from the state the run
+/// returned, whatever its ending. An interrupt (see [`catch_interrupt`]) stops the run
+/// with its outputs written. Reference data that cannot be read gives a warning, not a
+/// failure.
+pub fn run_scene(scene: &Scene, out: &Path, bar: &ProgressBar, settings: &RunSettings) -> RunOutcome {
     let mut last: Option<Instant> = None;
     let started = Instant::now();
-    let mut next_line = LOG_EVERY;
+    let mut next_line = settings.log_every.unwrap_or(Duration::MAX);
+    let mut phase: Option<(Phase, Instant)> = None;
     let label = if bar.prefix().is_empty() { scene.meta.name.clone() } else { bar.prefix() };
     let mut observer = |p: &Progress| {
         if interrupted() {
             return Control::Stop;
         }
+        if phase.map(|(ph, _)| ph) != Some(p.phase) {
+            phase = Some((p.phase, Instant::now()));
+            if !bar.is_hidden() {
+                bar.set_style(template(&bar.prefix(), "[{elapsed_precise}] {bar:30.cyan/blue} eta {eta:>4} {msg}"));
+                bar.reset_eta();
+                last = None;
+            }
+        }
+        let phase_wall = phase.map_or(0.0, |(_, t)| t.elapsed().as_secs_f64());
         if bar.is_hidden() {
+            let Some(every) = settings.log_every.filter(|e| !e.is_zero()) else { return Control::Continue };
             let elapsed = started.elapsed();
             if elapsed >= next_line {
                 while next_line <= elapsed {
-                    next_line += LOG_EVERY;
+                    next_line += every;
                 }
-                crate::errln!("{label}: [{:.0} s] {}", elapsed.as_secs_f64(), describe(p));
+                let left = eta(p, phase_wall).map_or_else(String::new, |e| format!("  eta {e:.0} s"));
+                crate::errln!("{label}: [{:.0} s] {}{left}", elapsed.as_secs_f64(), describe(p));
             }
         } else if !matches!(last, Some(t) if t.elapsed() < Duration::from_millis(50)) {
             last = Some(Instant::now());
@@ -183,7 +242,8 @@ pub fn run_scene(scene: &Scene, out: &Path, bar: &ProgressBar) -> RunOutcome {
         }
         Control::Continue
     };
-    let result = saltus_solvers::run(scene, out, &mut observer);
+    let options = saltus_solvers::RunOptions { restart: settings.restart.clone() };
+    let result = saltus_solvers::run_with(scene, out, &mut observer, &options);
     bar.finish_and_clear();
     let mut warnings = Vec::new();
     let run = match result {
