@@ -1,5 +1,6 @@
-//! `saltus run` through the command line: its outputs and figure, reference data, every
-//! ending (breakdown, Ctrl-C) keeping the outputs, and a stderr that cannot be written.
+//! `saltus run` through the command line: its outputs and figure, reference data, a
+//! breakdown keeping the outputs, and a stderr that cannot be written (interrupts are in
+//! `cli_outputs.rs`).
 
 mod common;
 
@@ -70,9 +71,9 @@ fn run_that_breaks_down_still_draws_its_last_good_state() {
         "--out",
         d.to_str().unwrap(),
     ]);
-    // exit 1: the run stopped, unstable, with its last good state written and reported
+    // exit 3: the run stopped, unstable, with its last good state written and reported
     let err = stderr(&o);
-    assert_eq!(o.status.code(), Some(1), "expected exit 1, got {:?}: {err}", o.status);
+    assert_eq!(o.status.code(), Some(3), "expected exit 3, got {:?}: {err}", o.status);
     assert!(!err.contains("panicked"), "{err}");
     let stop = err.lines().find(|l| l.starts_with("error:")).unwrap_or_else(|| panic!("{err}"));
     // the breakdown: time, cell, field, and where the outputs are
@@ -100,7 +101,7 @@ fn a_dem_run_that_breaks_down_names_the_particle_and_keeps_its_outputs() {
         d.to_str().unwrap(),
     ]);
     let err = stderr(&o);
-    assert_eq!(o.status.code(), Some(1), "expected exit 1, got {:?}: {err}", o.status);
+    assert_eq!(o.status.code(), Some(3), "expected exit 3, got {:?}: {err}", o.status);
     assert!(err.contains("unstable at t = ") && err.contains("|v|") && err.contains("in particle 0"), "{err}");
     let s = summary(&d);
     assert_eq!(s["ending"].as_str(), Some("unstable"));
@@ -136,63 +137,6 @@ fn several_reference_files_with_a_z_offset() {
     let p = write(&d, "bad.toml", &format!("{BASE}{bad}"));
     let err = assert_clean_failure(&saltus(&["check", p.to_str().unwrap()]));
     assert!(err.contains("reference[1]") && err.contains("z_ofset") && err.contains("z_offset"), "{err}");
-}
-
-#[test]
-fn ctrl_c_stops_a_run_with_its_outputs_written_and_exit_130() {
-    // a small DEM bed with a long flow: interrupted in the middle, it writes the state of
-    // that time and says so
-    let d = tmp_dir("run_interrupted");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_saltus"))
-        .args([
-            "run",
-            "cases/chassagne2023/case01.toml",
-            "--set",
-            "solver.type=\"lagrangian\"",
-            "--set",
-            "solver.lagrangian.length=0.06",
-            "--set",
-            "solver.lagrangian.width=0.06",
-            "--set",
-            "domain.bed_height=0.036",
-            "--set",
-            "domain.water_depth=0.03",
-            "--set",
-            "domain.cells=120",
-            "--set",
-            "solver.lagrangian.settle_time=0.05",
-            "--set",
-            "solver.lagrangian.end_time=1000.0",
-            "--set",
-            "solver.lagrangian.stats_start=0.0",
-            "--out",
-            d.to_str().unwrap(),
-        ])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("run saltus");
-    std::thread::sleep(std::time::Duration::from_secs(3));
-    let pid = child.id().to_string();
-    let sent = Command::new("kill").args(["-INT", &pid]).status().expect("kill");
-    assert!(sent.success());
-    let start = std::time::Instant::now();
-    while child.try_wait().expect("wait").is_none() {
-        if start.elapsed() > std::time::Duration::from_secs(120) {
-            let _ = child.kill();
-            panic!("the run did not stop within 120 s of Ctrl-C");
-        }
-        std::thread::sleep(std::time::Duration::from_millis(100));
-    }
-    let o = child.wait_with_output().expect("output");
-    let err = stderr(&o);
-    assert_eq!(o.status.code(), Some(130), "{err}");
-    assert!(err.contains("interrupted at t = ") && err.contains(d.to_str().unwrap()), "{err}");
-    assert!(!err.contains("panicked"), "{err}");
-    let s = summary(&d);
-    assert_eq!(s["ending"].as_str(), Some("interrupted"));
-    assert!(d.join("profiles.csv").is_file() && d.join("scene.toml").is_file());
 }
 
 #[test]

@@ -258,7 +258,8 @@ fn at_least(f: &Path, key: &str, t: f64, end_time: f64, end_key: &str, most: f64
         key: key.into(),
         value: crate::param::number(t),
         allowed: format!(
-            "at least {end_key} / {most:e} = {} s (0 = off where allowed): at most {most:e} {what} per run",
+            "{}at least {end_key} / {most:e} = {} s: at most {most:e} {what} per run",
+            if what == "files" { "0 (off) or " } else { "" },
             crate::param::number(least)
         ),
     })
