@@ -222,7 +222,7 @@ fn check_refuses_bad_output_intervals_as_run_does() {
 fn an_interrupted_compare_exits_130() {
     // case 1 in both solvers: the DEM variant runs for minutes, the interrupt stops it
     let d = tmp_dir("compare_interrupted");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_saltus"))
+    let child = Command::new(env!("CARGO_BIN_EXE_saltus"))
         .args(["compare", "cases/chassagne2023/compare_case01_solvers.toml", "--out", d.to_str().unwrap()])
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .stdout(Stdio::null())
