@@ -158,7 +158,9 @@ fn main() -> ExitCode {
             saltus::errln!("error: {e:#}");
             // a run stopped early wrote its outputs and says how it stopped; anything
             // else is a failure before or around the work
-            ExitCode::from(e.downcast_ref::<saltus::runner::Stopped>().map_or(saltus::runner::EXIT_BAD_INPUT, |s| s.code))
+            ExitCode::from(
+                e.downcast_ref::<saltus::runner::Stopped>().map_or(saltus::runner::EXIT_BAD_INPUT, |s| s.code),
+            )
         }
     }
 }

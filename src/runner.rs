@@ -99,7 +99,10 @@ impl RunOutcome {
             }),
             Ending::Interrupted => {
                 let resume = if out.join(saltus_solvers::run::checkpoint::FILE).is_file() {
-                    format!("; continue with `saltus run {file} --restart {}` (and the same --set options)", out.display())
+                    format!(
+                        "; continue with `saltus run {file} --restart {}` (and the same --set options)",
+                        out.display()
+                    )
                 } else {
                     String::new()
                 };

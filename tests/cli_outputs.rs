@@ -137,7 +137,10 @@ fn sigterm_during_the_deposition_writes_a_checkpoint_that_restarts() {
     let s = assert_interrupted(&d, code, &err);
     // stopped before the flow: no flow step, no row
     assert_eq!(s["steps"].as_u64(), Some(0), "{s}");
-    assert_eq!(std::fs::read_to_string(d.join("timeseries.csv")).unwrap(), "t,qs,qs_star,shields,bed_surface,residual,steps\n");
+    assert_eq!(
+        std::fs::read_to_string(d.join("timeseries.csv")).unwrap(),
+        "t,qs,qs_star,shields,bed_surface,residual,steps\n"
+    );
     let s = restart(&d, "solver.lagrangian.end_time=0.02");
     assert!(s["steps"].as_u64().is_some_and(|n| n > 0), "{s}");
     let (header, rows) = read_table(&d.join("timeseries.csv"));

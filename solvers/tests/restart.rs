@@ -135,7 +135,8 @@ fn a_restart_from_another_scene_or_a_bad_checkpoint_is_refused_by_name() {
     saltus_solvers::run(&s, &out, &mut Quiet).expect("runs");
     let opts = RunOptions { restart: Some(out.clone()) };
     // the end time, the output and the thread count may change
-    let longer = scene(&["solver.lagrangian.end_time=0.03", "solver.lagrangian.threads=1", "output.snapshot_interval=0"]);
+    let longer =
+        scene(&["solver.lagrangian.end_time=0.03", "solver.lagrangian.threads=1", "output.snapshot_interval=0"]);
     let r = saltus_solvers::run_with(&longer, &out, &mut Quiet, &opts).expect("goes on");
     assert!((r.report.summary.sim_time_s - 0.03).abs() < 1e-4, "{}", r.report.summary.sim_time_s);
     let other = scene(&["solver.lagrangian.settle_time=0.06", "seed=5"]);

@@ -236,7 +236,10 @@ impl Output {
             check(f, "output.timeseries_interval", t, ParamRange::open_closed(0.0, max))?;
             at_least(f, "output.timeseries_interval", t, end_time, end_key, MAX_TIMESERIES_ROWS, "rows")?;
         }
-        for (key, t) in [("output.snapshot_interval", self.snapshot_interval), ("output.checkpoint_interval", self.checkpoint_interval)] {
+        for (key, t) in [
+            ("output.snapshot_interval", self.snapshot_interval),
+            ("output.checkpoint_interval", self.checkpoint_interval),
+        ] {
             check(f, key, t, ParamRange::closed(0.0, max))?;
             if t > 0.0 {
                 at_least(f, key, t, end_time, end_key, MAX_SNAPSHOTS, "files")?;

@@ -120,7 +120,7 @@ impl Lagrangian<'_> {
             && cells > 0
             && cell_arrays.iter().all(|a| a.len() == cells)
             && s.averages.iter().all(|a| a.len() == cells)
-            && s.column.as_ref().map_or(true, |c| c.velocity().len() == cells)
+            && s.column.as_ref().is_none_or(|c| c.velocity().len() == cells)
             && s.column.is_some() == self.column.is_some()
             && s.dem.dt() == self.dem.dt();
         if !fits {

@@ -107,7 +107,8 @@ impl Stepper for Lagrangian<'_> {
     /// and the relative change of the steady-state windows. Without fluid there are no
     /// averages: only the time and the steps.
     fn sample(&self) -> Sample {
-        let mut s = Sample { time: self.time(), residual: self.steady().change(), steps: self.steps(), ..Sample::default() };
+        let mut s =
+            Sample { time: self.time(), residual: self.steady().change(), steps: self.steps(), ..Sample::default() };
         if self.config().settings.numerics.fluid == FluidMode::Off {
             return s;
         }

@@ -149,10 +149,8 @@ pub fn read(path: &Path) -> Result<Restart, Error> {
     if fnv1a(body) != word(end, 8) {
         return Err(bad("damaged: the checksum does not match".into()));
     }
-    let body: Body = options()
-        .with_limit(body.len() as u64)
-        .deserialize(body)
-        .map_err(|e| bad(format!("cannot decode: {e}")))?;
+    let body: Body =
+        options().with_limit(body.len() as u64).deserialize(body).map_err(|e| bad(format!("cannot decode: {e}")))?;
     Ok(Restart { dir, file, solver: body.solver, scene: body.scene, cadence: body.cadence, state: body.state })
 }
 
@@ -201,7 +199,9 @@ fn diff(key: &str, a: &toml::Value, b: &toml::Value, solver: &str, out: &mut Vec
             let sub = if key.is_empty() { k.clone() } else { format!("{key}.{k}") };
             match (x.get(k), y.get(k)) {
                 (Some(u), Some(v)) => diff(&sub, u, v, solver, out),
-                (u, v) if !may_differ(&sub, solver) => out.push(format!("{sub} ({} in the checkpoint, {} now)", show(u), show(v))),
+                (u, v) if !may_differ(&sub, solver) => {
+                    out.push(format!("{sub} ({} in the checkpoint, {} now)", show(u), show(v)))
+                }
                 _ => {}
             }
         }
@@ -237,7 +237,10 @@ mod tests {
         let state = vec![1u8, 2, 3, 255];
         write(&dir, "lagrangian", "seed = 3\n", &cadence, &state).unwrap();
         let r = read(&dir).unwrap();
-        assert_eq!((r.solver.as_str(), r.scene.as_str(), r.cadence, r.state), ("lagrangian", "seed = 3\n", cadence, state));
+        assert_eq!(
+            (r.solver.as_str(), r.scene.as_str(), r.cadence, r.state),
+            ("lagrangian", "seed = 3\n", cadence, state)
+        );
         let file = dir.join(FILE);
         let mut bytes = std::fs::read(&file).unwrap();
         let n = bytes.len();

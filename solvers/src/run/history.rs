@@ -117,7 +117,8 @@ impl Recorder {
         };
         let from = restart.map(|r| r.dir.as_path());
         let rows = r.cadence.rows;
-        r.timeseries = Some(continued(&dir.join(TIMESERIES), from.map(|d| d.join(TIMESERIES)), TIMESERIES_HEADER, rows)?);
+        r.timeseries =
+            Some(continued(&dir.join(TIMESERIES), from.map(|d| d.join(TIMESERIES)), TIMESERIES_HEADER, rows)?);
         if r.snapshot_interval > 0.0 {
             let snaps = dir.join(SNAPSHOTS);
             std::fs::create_dir_all(&snaps).map_err(io(&snaps))?;
