@@ -7,7 +7,7 @@
 //! "SALTUSCP" (8 bytes) | format version (u32 LE) | body length (u64 LE) | body | FNV-1a 64 of the body (u64 LE)
 //! ```
 //!
-//! with the body a bincode [`Body`]: the program that wrote it, the solver, the resolved
+//! with the body in bincode: the program that wrote it, the solver, the resolved
 //! scene (TOML text), the driver's cadences ([`Cadence`]) and the solver's own state
 //! ([`super::Stepper::save`]; bincode too, every f64 as its 8 bytes, so the state reads
 //! back exactly). A new file is written beside the old one and renamed over it, so that a
