@@ -53,6 +53,27 @@ impl EvalFamily {
         }
     }
 
+    /// Every input name the family reads (a granular model reads `i` or `k`, a
+    /// fluctuation model also `granular_temperature` when it needs it): names outside it
+    /// are ignored by [`Model::outputs`].
+    pub fn input_names(self) -> &'static [&'static str] {
+        match self {
+            EvalFamily::Granular => &["i", "k"],
+            EvalFamily::Fluctuation => &[
+                "k",
+                "omega",
+                "nu_t",
+                "reynolds_stress",
+                "granular_temperature",
+                "slip",
+                "response_time",
+                "depth",
+                "bulk_velocity",
+            ],
+            other => other.inputs(),
+        }
+    }
+
     /// Output column names.
     pub fn outputs(self) -> &'static [&'static str] {
         match self {
@@ -127,16 +148,21 @@ impl EvalFamily {
 /// Parse a model given on the command line: either `key = value` lines or an inline table
 /// `{ type = "...", ... }`.
 pub fn parse_model(text: &str, family: EvalFamily) -> anyhow::Result<toml::Value> {
+    parse_model_from(text, family, "--model")
+}
+
+/// [`parse_model`] of a text that messages name `label`.
+pub fn parse_model_from(text: &str, family: EvalFamily, label: &str) -> anyhow::Result<toml::Value> {
     let trimmed = text.trim();
     let doc = if trimmed.starts_with('{') { format!("model = {trimmed}") } else { String::new() };
     let table: toml::Table = if doc.is_empty() {
-        trimmed.parse().map_err(|e: toml::de::Error| anyhow!("--model: TOML syntax error: {}", e.message()))?
+        trimmed.parse().map_err(|e: toml::de::Error| anyhow!("{label}: TOML syntax error: {}", e.message()))?
     } else {
         let mut t: toml::Table =
-            doc.parse().map_err(|e: toml::de::Error| anyhow!("--model: TOML syntax error: {}", e.message()))?;
+            doc.parse().map_err(|e: toml::de::Error| anyhow!("{label}: TOML syntax error: {}", e.message()))?;
         match t.remove("model") {
             Some(toml::Value::Table(inner)) => inner,
-            _ => bail!("--model: expected a table"),
+            _ => bail!("{label}: expected a table"),
         }
     };
     Ok(model_table(table, family))
