@@ -7,8 +7,12 @@
 //! converts values and errors.
 //!
 //! Layout kept open to closures written in Python (a later `saltus.register_closure`): the
-//! closure front is [`Closure`], built from a family and a table and evaluated on named
+//! closure front is the `Closure` class, built from a family and a table and evaluated on named
 //! arrays, the same contract a registered Python closure will fill.
+
+// saltus_core::Error carries file, key and message; it is built once per failed call,
+// never in a hot loop, so its size does not matter (as in saltus-solvers).
+#![allow(clippy::result_large_err)]
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -112,9 +116,8 @@ fn py_to_toml(v: &Bound<'_, PyAny>, what: &str) -> PyResult<toml::Value> {
         return Ok(toml::Value::Boolean(b.is_true()));
     }
     if v.is_instance_of::<PyInt>() {
-        let i: i64 = v
-            .extract()
-            .map_err(|_| PyValueError::new_err(format!("{what}: integer {v} does not fit in 64 bits")))?;
+        let i: i64 =
+            v.extract().map_err(|_| PyValueError::new_err(format!("{what}: integer {v} does not fit in 64 bits")))?;
         return Ok(toml::Value::Integer(i));
     }
     if let Ok(f) = v.cast::<PyFloat>() {
@@ -151,9 +154,7 @@ fn py_to_toml(v: &Bound<'_, PyAny>, what: &str) -> PyResult<toml::Value> {
         return Ok(toml::Value::Float(v.call_method0("__float__")?.extract()?));
     }
     let ty = v.get_type().name().map_or_else(|_| "?".to_string(), |n| n.to_string());
-    Err(PyTypeError::new_err(format!(
-        "{what}: a {ty} has no TOML form; use a bool, int, float, str, dict or list"
-    )))
+    Err(PyTypeError::new_err(format!("{what}: a {ty} has no TOML form; use a bool, int, float, str, dict or list")))
 }
 
 /// The overrides of `set` as the command line's `KEY=VALUE` strings: a dict's values are
@@ -260,11 +261,8 @@ fn run<'py>(
     let set = overrides(set)?;
     let s = py.detach(|| Scene::from_file_with(&scene, &set)).map_err(|e| load_error(py, e))?;
     let out = out.unwrap_or_else(|| runner::default_out(&s));
-    let bar = if quiet {
-        indicatif::ProgressBar::hidden()
-    } else {
-        runner::progress_bar(std::io::stderr().is_terminal())
-    };
+    let bar =
+        if quiet { indicatif::ProgressBar::hidden() } else { runner::progress_bar(std::io::stderr().is_terminal()) };
     let mut interrupt: Option<PyErr> = None;
     let result = py.detach(|| {
         let mut last = Instant::now();
