@@ -174,7 +174,7 @@ def run(
             raw = _native.run(scene_path, set, tmp, quiet)
             raw["out"] = None
             raw["figure"] = None
-    elif out is None or out is True:
+    elif out is None:
         raw = _native.run(scene_path, set, None, quiet)
     else:
         raw = _native.run(scene_path, set, _path(out, "out"), quiet)
