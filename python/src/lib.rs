@@ -281,8 +281,9 @@ fn run<'py>(
     };
     let d = PyDict::new(py);
     d.set_item("ending", ending.name())?;
-    let summary = serde_json::to_value(&report.summary).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-    d.set_item("summary", json_to_py(py, &summary)?)?;
+    // read back with Python's json, as a user reads summary.json: the file's key order
+    let summary = serde_json::to_string(&report.summary).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    d.set_item("summary", py.import("json")?.call_method1("loads", (summary,))?)?;
     let profiles = PyDict::new(py);
     for (name, values) in &report.profiles.columns {
         profiles.set_item(name, PyArray1::from_slice(py, values))?;
