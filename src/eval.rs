@@ -7,10 +7,11 @@ use std::path::Path;
 
 use anyhow::{anyhow, bail, Context};
 use saltus_core::closure::Family;
+use saltus_core::registry;
 use saltus_core::scene::closure_from_value;
 use saltus_core::{
-    ColumnView, DragLaw, EffectiveViscosity, Field, FlowScales, Fluctuation, GranularStress, Hindrance, ParticleSlip,
-    Turbulence, TurbulencePoint,
+    ColumnView, Describe, DragLaw, EffectiveViscosity, Field, FlowScales, Fluctuation, GranularStress, Hindrance,
+    ParticleSlip, Turbulence, TurbulencePoint,
 };
 
 use crate::table::Table;
@@ -49,6 +50,27 @@ impl EvalFamily {
             EvalFamily::Fluctuation => {
                 &["k", "omega", "nu_t", "reynolds_stress", "slip", "response_time", "depth", "bulk_velocity"]
             }
+        }
+    }
+
+    /// Every input name the family reads (a granular model reads `i` or `k`, a
+    /// fluctuation model also `granular_temperature` when it needs it): names outside it
+    /// are ignored by [`Model::outputs`].
+    pub fn input_names(self) -> &'static [&'static str] {
+        match self {
+            EvalFamily::Granular => &["i", "k"],
+            EvalFamily::Fluctuation => &[
+                "k",
+                "omega",
+                "nu_t",
+                "reynolds_stress",
+                "granular_temperature",
+                "slip",
+                "response_time",
+                "depth",
+                "bulk_velocity",
+            ],
+            other => other.inputs(),
         }
     }
 
@@ -111,27 +133,257 @@ impl EvalFamily {
         );
         s
     }
+
+    /// The family named `name` as on the command line (`kinetic_theory` included).
+    pub fn from_key(name: &str) -> anyhow::Result<EvalFamily> {
+        Self::ALL.into_iter().find(|f| f.key() == name).ok_or_else(|| {
+            anyhow!(
+                "unknown family `{name}`; known: {}",
+                Self::ALL.iter().map(|f| f.key()).collect::<Vec<_>>().join(", ")
+            )
+        })
+    }
 }
 
 /// Parse a model given on the command line: either `key = value` lines or an inline table
 /// `{ type = "...", ... }`.
 pub fn parse_model(text: &str, family: EvalFamily) -> anyhow::Result<toml::Value> {
+    parse_model_from(text, family, "--model")
+}
+
+/// [`parse_model`] of a text that messages name `label`.
+pub fn parse_model_from(text: &str, family: EvalFamily, label: &str) -> anyhow::Result<toml::Value> {
     let trimmed = text.trim();
     let doc = if trimmed.starts_with('{') { format!("model = {trimmed}") } else { String::new() };
-    let mut table: toml::Table = if doc.is_empty() {
-        trimmed.parse().map_err(|e: toml::de::Error| anyhow!("--model: TOML syntax error: {}", e.message()))?
+    let table: toml::Table = if doc.is_empty() {
+        trimmed.parse().map_err(|e: toml::de::Error| anyhow!("{label}: TOML syntax error: {}", e.message()))?
     } else {
         let mut t: toml::Table =
-            doc.parse().map_err(|e: toml::de::Error| anyhow!("--model: TOML syntax error: {}", e.message()))?;
+            doc.parse().map_err(|e: toml::de::Error| anyhow!("{label}: TOML syntax error: {}", e.message()))?;
         match t.remove("model") {
             Some(toml::Value::Table(inner)) => inner,
-            _ => bail!("--model: expected a table"),
+            _ => bail!("{label}: expected a table"),
         }
     };
+    Ok(model_table(table, family))
+}
+
+/// A model's table as the family reads it: a `kinetic_theory` table is a
+/// `frictional_collisional` granular table whose `type` may be left out.
+pub fn model_table(mut table: toml::Table, family: EvalFamily) -> toml::Value {
     if family == EvalFamily::KineticTheory && !table.contains_key("type") {
         table.insert("type".into(), toml::Value::String("frictional_collisional".into()));
     }
-    Ok(toml::Value::Table(table))
+    toml::Value::Table(table)
+}
+
+/// How messages name an input table and its rows: the CSV file with rows counted as its
+/// lines (the first data row is line 2), or a caller's arrays indexed from 0.
+#[derive(Clone, Copy, Debug)]
+pub struct Rows<'a> {
+    /// what the table came from, first word of every message
+    pub origin: &'a str,
+    /// number given to the first row
+    pub first: usize,
+}
+
+impl<'a> Rows<'a> {
+    /// Rows of a CSV file (or stdin) named `origin`: the first data row is its line 2.
+    pub fn csv(origin: &'a str) -> Self {
+        Rows { origin, first: 2 }
+    }
+}
+
+/// The closure object of one family, built and range-checked once.
+#[derive(Debug)]
+enum Kind {
+    Drag(Box<dyn DragLaw>),
+    Hindrance(Box<dyn Hindrance>),
+    Viscosity(Box<dyn EffectiveViscosity>),
+    /// a local rheology (`as_local` is `Some`)
+    Granular(Box<dyn GranularStress>),
+    /// a kinetic-theory closure (`as_kinetic` is `Some`)
+    KineticTheory(Box<dyn GranularStress>),
+    Turbulence(Box<dyn Turbulence>),
+    Fluctuation(Box<dyn Fluctuation>),
+}
+
+/// One closure of an [`EvalFamily`], built from its TOML table and checked once, then
+/// evaluated on any number of input tables ([`Model::outputs`]).
+#[derive(Debug)]
+pub struct Model {
+    family: EvalFamily,
+    kind: Kind,
+}
+
+impl Model {
+    /// Build `model` (a closure table) of `family`. Errors name `file` and the key path
+    /// under `key` (`--model` and `model` on the command line).
+    pub fn build(family: EvalFamily, model: toml::Value, file: &Path, key: &str) -> anyhow::Result<Model> {
+        let f = family.scene_family().ok_or_else(|| anyhow!("unknown family"))?;
+        let origin = file.display();
+        let kind = match family {
+            EvalFamily::Drag => Kind::Drag(closure_from_value(model, f, file, key)?),
+            EvalFamily::Hindrance => Kind::Hindrance(closure_from_value(model, f, file, key)?),
+            EvalFamily::Viscosity => Kind::Viscosity(closure_from_value(model, f, file, key)?),
+            EvalFamily::Granular => {
+                let m: Box<dyn GranularStress> = closure_from_value(model, f, file, key)?;
+                if m.as_local().is_none() {
+                    bail!(
+                        "{origin}: `{}` is not a local rheology; evaluate its coefficients with --family kinetic_theory",
+                        m.name()
+                    );
+                }
+                Kind::Granular(m)
+            }
+            EvalFamily::KineticTheory => {
+                let m: Box<dyn GranularStress> = closure_from_value(model, f, file, key)?;
+                if m.as_kinetic().is_none() {
+                    bail!("{origin}: `{}` is not a kinetic-theory closure (use frictional_collisional)", m.name());
+                }
+                Kind::KineticTheory(m)
+            }
+            EvalFamily::Turbulence => Kind::Turbulence(closure_from_value(model, f, file, key)?),
+            EvalFamily::Fluctuation => Kind::Fluctuation(closure_from_value(model, f, file, key)?),
+        };
+        Ok(Model { family, kind })
+    }
+
+    /// The family the model was built for.
+    pub fn family(&self) -> EvalFamily {
+        self.family
+    }
+
+    /// The model's name, equation, source and parameters with their values.
+    pub fn describe(&self) -> &dyn Describe {
+        match &self.kind {
+            Kind::Drag(m) => m.as_ref(),
+            Kind::Hindrance(m) => m.as_ref(),
+            Kind::Viscosity(m) => m.as_ref(),
+            Kind::Granular(m) | Kind::KineticTheory(m) => m.as_ref(),
+            Kind::Turbulence(m) => m.as_ref(),
+            Kind::Fluctuation(m) => m.as_ref(),
+        }
+    }
+
+    /// The default instance of this model, as registered: its parameters' defaults.
+    pub fn registered_default(&self) -> Option<Box<dyn Describe>> {
+        let family = self.family.scene_family()?;
+        let name = self.describe().name();
+        registry::models_of(family).into_iter().find(|m| m.name == name).map(|m| (m.default)())
+    }
+
+    /// The family's output columns ([`EvalFamily::outputs`]) on the rows of `input`. Inputs
+    /// are looked up by name; those a model does not need may be absent. The fluctuation
+    /// draw of row i uses stream i of `seed`.
+    pub fn outputs(&self, input: &Table, rows: Rows, seed: u64) -> anyhow::Result<Table> {
+        let n = input.rows();
+        let family = self.family;
+        let origin = rows.origin;
+        let mut out = Table::default();
+        match &self.kind {
+            Kind::Drag(m) => {
+                let re = need(input, "re_p", family, origin)?;
+                check_reynolds(re, rows)?;
+                let mut cd = vec![0.0; n];
+                m.cd_batch(re, &mut cd);
+                out.push("cd", cd);
+            }
+            Kind::Hindrance(m) => {
+                let phi = need(input, "phi", family, origin)?;
+                let re = need(input, "re_p", family, origin)?;
+                check_fraction(phi, rows)?;
+                check_reynolds(re, rows)?;
+                let mut f = vec![0.0; n];
+                m.factor_batch(phi, re, &mut f);
+                out.push("factor", f);
+            }
+            Kind::Viscosity(m) => {
+                let phi = need(input, "phi", family, origin)?;
+                check_fraction(phi, rows)?;
+                let mut r = vec![0.0; n];
+                m.ratio_batch(phi, &mut r);
+                out.push("nu_ratio", r);
+            }
+            Kind::Granular(m) => {
+                let local = m.as_local().ok_or_else(|| anyhow!("`{}` is not a local rheology", m.name()))?;
+                let x = need(input, local.control_name(), family, origin)?;
+                let mut mu = vec![0.0; n];
+                let mut phi = vec![0.0; n];
+                local.eval_batch(x, &mut mu, &mut phi);
+                out.push("mu", mu);
+                out.push("phi", phi);
+            }
+            Kind::KineticTheory(m) => {
+                let kt = m.as_kinetic().ok_or_else(|| anyhow!("`{}` is not a kinetic-theory closure", m.name()))?;
+                let phi = need(input, "phi", family, origin)?;
+                check_fraction(phi, rows)?;
+                let mut c = vec![saltus_core::KineticCoefficients::default(); n];
+                kt.coefficients_batch(phi, None, &mut c);
+                out.push("g0", c.iter().map(|c| c.g0).collect());
+                out.push("f1", c.iter().map(|c| c.f1).collect());
+                out.push("f2", c.iter().map(|c| c.f2).collect());
+                out.push("f3", c.iter().map(|c| c.f3).collect());
+                out.push("f4", c.iter().map(|c| c.f4).collect());
+                out.push("e_eff", c.iter().map(|c| c.e_eff).collect());
+            }
+            Kind::Turbulence(m) => {
+                let z = need(input, "z", family, origin)?;
+                let phi = need(input, "phi", family, origin)?;
+                let dudz = need(input, "dudz", family, origin)?;
+                check_fraction(phi, rows)?;
+                let dz = cell_widths(z, origin)?;
+                let d = need(input, "d", family, origin)?;
+                let diameter = d.first().copied().unwrap_or(0.0);
+                if d.iter().any(|&x| x != diameter) || diameter.is_nan() || diameter <= 0.0 {
+                    bail!("{origin}: column `d` must hold one positive grain diameter (m) on every row");
+                }
+                let col = ColumnView { z, dz: &dz, phi, dudz, diameter, nu_f: 0.0, transported: &[] };
+                let mut lm = vec![0.0; n];
+                m.mixing_length(&col, &mut lm);
+                let nut = lm.iter().zip(dudz).map(|(&l, &g)| m.eddy_viscosity_point(l, g)).collect();
+                out.push("l_m", lm);
+                out.push("nu_t", nut);
+            }
+            Kind::Fluctuation(m) => {
+                for f in m.needs().iter() {
+                    let col = match f {
+                        Field::Tke => "k",
+                        Field::Omega => "omega",
+                        Field::EddyViscosity => "nu_t",
+                        Field::ReynoldsStress => "reynolds_stress",
+                        Field::GranularTemperature => "granular_temperature",
+                    };
+                    need(input, col, family, origin).with_context(|| format!("model `{}` needs {f}", m.name()))?;
+                }
+                let (k, omega, nut, rs) = (
+                    optional(input, "k"),
+                    optional(input, "omega"),
+                    optional(input, "nu_t"),
+                    optional(input, "reynolds_stress"),
+                );
+                let (slip, tp) = (optional(input, "slip"), optional(input, "response_time"));
+                let (depth, ub) = (optional(input, "depth"), optional(input, "bulk_velocity"));
+                let mut cols: [Vec<f64>; 5] = Default::default();
+                for i in 0..n {
+                    let t = TurbulencePoint { k: k[i], omega: omega[i], nu_t: nut[i], reynolds_stress: rs[i] };
+                    let s = FlowScales { depth: depth[i], bulk_velocity: ub[i] };
+                    let p = ParticleSlip { slip: slip[i], response_time: tp[i] };
+                    let mut rng = saltus_core::rng::stream(seed, i as u64);
+                    let d = m.draw(&t, &p, &s, &mut rng);
+                    cols[0].push(m.diffusivity(&t, &s));
+                    cols[1].push(d.u[0]);
+                    cols[2].push(d.u[1]);
+                    cols[3].push(d.u[2]);
+                    cols[4].push(d.duration);
+                }
+                for (name, c) in ["diffusivity", "u_x", "u_y", "u_z", "duration"].into_iter().zip(cols) {
+                    out.push(name, c);
+                }
+            }
+        }
+        Ok(out)
+    }
 }
 
 fn need<'a>(t: &'a Table, name: &str, family: EvalFamily, origin: &str) -> anyhow::Result<&'a [f64]> {
@@ -149,7 +401,8 @@ fn optional(t: &Table, name: &str) -> Vec<f64> {
     t.get(name).map_or_else(|| vec![0.0; t.rows()], <[f64]>::to_vec)
 }
 
-/// Evaluate `model` (a closure table) of `family` on `input`; returns input + outputs.
+/// Evaluate `model` (a closure table) of `family` on the rows of a CSV named `origin`;
+/// returns the input columns followed by the outputs.
 pub fn evaluate(
     family: EvalFamily,
     model: toml::Value,
@@ -157,138 +410,25 @@ pub fn evaluate(
     origin: &str,
     seed: u64,
 ) -> anyhow::Result<Table> {
-    let n = input.rows();
-    let src = Path::new("--model");
-    let scene_family = family.scene_family().ok_or_else(|| anyhow!("unknown family"))?;
+    let m = Model::build(family, model, Path::new("--model"), "model")?;
+    let outputs = m.outputs(input, Rows::csv(origin), seed)?;
     let mut out = input.clone();
-    match family {
-        EvalFamily::Drag => {
-            let m: Box<dyn DragLaw> = closure_from_value(model, scene_family, src, "model")?;
-            let re = need(input, "re_p", family, origin)?;
-            check_reynolds(re, origin)?;
-            let mut cd = vec![0.0; n];
-            m.cd_batch(re, &mut cd);
-            out.push("cd", cd);
-        }
-        EvalFamily::Hindrance => {
-            let m: Box<dyn Hindrance> = closure_from_value(model, scene_family, src, "model")?;
-            let phi = need(input, "phi", family, origin)?;
-            let re = need(input, "re_p", family, origin)?;
-            check_fraction(phi, origin)?;
-            check_reynolds(re, origin)?;
-            let mut f = vec![0.0; n];
-            m.factor_batch(phi, re, &mut f);
-            out.push("factor", f);
-        }
-        EvalFamily::Viscosity => {
-            let m: Box<dyn EffectiveViscosity> = closure_from_value(model, scene_family, src, "model")?;
-            let phi = need(input, "phi", family, origin)?;
-            check_fraction(phi, origin)?;
-            let mut r = vec![0.0; n];
-            m.ratio_batch(phi, &mut r);
-            out.push("nu_ratio", r);
-        }
-        EvalFamily::Granular => {
-            let m: Box<dyn GranularStress> = closure_from_value(model, scene_family, src, "model")?;
-            let local = m.as_local().ok_or_else(|| {
-                anyhow!(
-                    "--model: `{}` is not a local rheology; evaluate its coefficients with --family kinetic_theory",
-                    m.name()
-                )
-            })?;
-            let x = need(input, local.control_name(), family, origin)?;
-            let mut mu = vec![0.0; n];
-            let mut phi = vec![0.0; n];
-            local.eval_batch(x, &mut mu, &mut phi);
-            out.push("mu", mu);
-            out.push("phi", phi);
-        }
-        EvalFamily::KineticTheory => {
-            let m: Box<dyn GranularStress> = closure_from_value(model, scene_family, src, "model")?;
-            let kt = m.as_kinetic().ok_or_else(|| {
-                anyhow!("--model: `{}` is not a kinetic-theory closure (use frictional_collisional)", m.name())
-            })?;
-            let phi = need(input, "phi", family, origin)?;
-            check_fraction(phi, origin)?;
-            let mut c = vec![saltus_core::KineticCoefficients::default(); n];
-            kt.coefficients_batch(phi, None, &mut c);
-            out.push("g0", c.iter().map(|c| c.g0).collect());
-            out.push("f1", c.iter().map(|c| c.f1).collect());
-            out.push("f2", c.iter().map(|c| c.f2).collect());
-            out.push("f3", c.iter().map(|c| c.f3).collect());
-            out.push("f4", c.iter().map(|c| c.f4).collect());
-            out.push("e_eff", c.iter().map(|c| c.e_eff).collect());
-        }
-        EvalFamily::Turbulence => {
-            let m: Box<dyn Turbulence> = closure_from_value(model, scene_family, src, "model")?;
-            let z = need(input, "z", family, origin)?;
-            let phi = need(input, "phi", family, origin)?;
-            let dudz = need(input, "dudz", family, origin)?;
-            check_fraction(phi, origin)?;
-            let dz = cell_widths(z, origin)?;
-            let d = need(input, "d", family, origin)?;
-            let diameter = d.first().copied().unwrap_or(0.0);
-            if d.iter().any(|&x| x != diameter) || diameter.is_nan() || diameter <= 0.0 {
-                bail!("{origin}: column `d` must hold one positive grain diameter (m) on every row");
-            }
-            let col = ColumnView { z, dz: &dz, phi, dudz, diameter, nu_f: 0.0, transported: &[] };
-            let mut lm = vec![0.0; n];
-            m.mixing_length(&col, &mut lm);
-            let nut = lm.iter().zip(dudz).map(|(&l, &g)| m.eddy_viscosity_point(l, g)).collect();
-            out.push("l_m", lm);
-            out.push("nu_t", nut);
-        }
-        EvalFamily::Fluctuation => {
-            let m: Box<dyn Fluctuation> = closure_from_value(model, scene_family, src, "model")?;
-            for f in m.needs().iter() {
-                let col = match f {
-                    Field::Tke => "k",
-                    Field::Omega => "omega",
-                    Field::EddyViscosity => "nu_t",
-                    Field::ReynoldsStress => "reynolds_stress",
-                    Field::GranularTemperature => "granular_temperature",
-                };
-                need(input, col, family, origin).with_context(|| format!("model `{}` needs {f}", m.name()))?;
-            }
-            let (k, omega, nut, rs) = (
-                optional(input, "k"),
-                optional(input, "omega"),
-                optional(input, "nu_t"),
-                optional(input, "reynolds_stress"),
-            );
-            let (slip, tp) = (optional(input, "slip"), optional(input, "response_time"));
-            let (depth, ub) = (optional(input, "depth"), optional(input, "bulk_velocity"));
-            let mut cols: [Vec<f64>; 5] = Default::default();
-            for i in 0..n {
-                let t = TurbulencePoint { k: k[i], omega: omega[i], nu_t: nut[i], reynolds_stress: rs[i] };
-                let s = FlowScales { depth: depth[i], bulk_velocity: ub[i] };
-                let p = ParticleSlip { slip: slip[i], response_time: tp[i] };
-                let mut rng = saltus_core::rng::stream(seed, i as u64);
-                let d = m.draw(&t, &p, &s, &mut rng);
-                cols[0].push(m.diffusivity(&t, &s));
-                cols[1].push(d.u[0]);
-                cols[2].push(d.u[1]);
-                cols[3].push(d.u[2]);
-                cols[4].push(d.duration);
-            }
-            for (name, c) in ["diffusivity", "u_x", "u_y", "u_z", "duration"].into_iter().zip(cols) {
-                out.push(name, c);
-            }
-        }
+    for (name, c) in outputs.names.into_iter().zip(outputs.columns) {
+        out.push(name, c);
     }
     Ok(out)
 }
 
-fn check_reynolds(re: &[f64], origin: &str) -> anyhow::Result<()> {
+fn check_reynolds(re: &[f64], rows: Rows) -> anyhow::Result<()> {
     if let Some((i, r)) = re.iter().enumerate().find(|(_, r)| !(r.is_finite() && **r >= 0.0)) {
-        bail!("{origin}: row {}: re_p = {r}: allowed finite values >= 0", i + 2);
+        bail!("{}: row {}: re_p = {r}: allowed finite values >= 0", rows.origin, i + rows.first);
     }
     Ok(())
 }
 
-fn check_fraction(phi: &[f64], origin: &str) -> anyhow::Result<()> {
+fn check_fraction(phi: &[f64], rows: Rows) -> anyhow::Result<()> {
     if let Some((i, p)) = phi.iter().enumerate().find(|(_, p)| !(0.0..1.0).contains(*p)) {
-        bail!("{origin}: row {}: phi = {p} outside [0, 1)", i + 2);
+        bail!("{}: row {}: phi = {p} outside [0, 1)", rows.origin, i + rows.first);
     }
     Ok(())
 }

@@ -2,6 +2,10 @@
 //! on a CSV, closure comparison plots, the run driver and scene comparisons. No physics
 //! lives here: every number comes from a closure or a solver.
 
+// Errors carry file, key and message for the user; they are built once per failed run,
+// never in a hot loop, so their size does not matter (as in saltus-solvers).
+#![allow(clippy::result_large_err)]
+
 /// `eprintln!` that never panics: a closed or full stderr (`2>/dev/full`, errors piped
 /// into `head`) loses the message, not the run's outputs or its exit code.
 #[macro_export]

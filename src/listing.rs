@@ -3,8 +3,19 @@
 
 use std::fmt::Write;
 
+use anyhow::Context;
 use saltus_core::closure::Family;
-use saltus_core::registry;
+use saltus_core::{registry, Describe};
+
+/// The scene family named `name` (`drag`, `hindrance`, ...); the error lists the known ones.
+pub fn parse_family(name: &str) -> anyhow::Result<Family> {
+    Family::from_key(name).with_context(|| {
+        format!(
+            "unknown family `{name}`; known: {}",
+            Family::ALL.iter().map(|f| f.key()).collect::<Vec<_>>().join(", ")
+        )
+    })
+}
 
 /// Text listing of the models of `family` (all families when `None`).
 pub fn text(family: Option<Family>) -> String {
@@ -39,6 +50,25 @@ pub fn text(family: Option<Family>) -> String {
         s.push('\n');
     }
     s
+}
+
+/// Parameters of a configured model as JSON objects: the keys of [`json`]'s `parameters`
+/// plus `value`, the configured value (`default` is that of `defaults`, the registered
+/// default instance, or null for a parameter it does not have, a nested model switched
+/// to another type).
+pub fn params_json(model: &dyn Describe, defaults: Option<&dyn Describe>) -> Vec<serde_json::Value> {
+    let defaults = defaults.map(|d| d.params()).unwrap_or_default();
+    model
+        .params()
+        .into_iter()
+        .map(|p| {
+            let default = defaults.iter().find(|d| d.name == p.name).map(|d| d.value);
+            serde_json::json!({
+                "name": p.name, "value": p.value, "default": default, "range": p.range.to_string(),
+                "unit": p.unit, "doc": p.doc
+            })
+        })
+        .collect()
 }
 
 /// JSON listing (for tools).

@@ -4,11 +4,9 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::Context;
 use clap::{Parser, Subcommand};
 use saltus::eval::{evaluate, parse_model, EvalFamily};
 use saltus::table::Table;
-use saltus_core::closure::Family;
 use saltus_core::scene::Scene;
 
 #[derive(Parser)]
@@ -165,28 +163,11 @@ fn main() -> ExitCode {
     }
 }
 
-fn parse_family(name: &str) -> anyhow::Result<Family> {
-    Family::from_key(name).with_context(|| {
-        format!(
-            "unknown family `{name}`; known: {}",
-            Family::ALL.iter().map(|f| f.key()).collect::<Vec<_>>().join(", ")
-        )
-    })
-}
-
-/// A scene checked whole: the schema at load, then what its solver needs to start (the
-/// set-up `run` does before any work, so `check` and `run` refuse the same scenes).
-fn load(scene: &std::path::Path, set: &[String]) -> anyhow::Result<Scene> {
-    let s = Scene::from_file_with(scene, set)?;
-    saltus_solvers::validate(&s)?;
-    Ok(s)
-}
-
 fn run(cli: Cli) -> anyhow::Result<()> {
     saltus::ensure_registry()?;
     match cli.command {
         Command::Models { family, json } => {
-            let family = family.as_deref().map(parse_family).transpose()?;
+            let family = family.as_deref().map(saltus::listing::parse_family).transpose()?;
             if json {
                 outln!("{}", serde_json::to_string_pretty(&saltus::listing::json(family))?);
             } else {
@@ -194,7 +175,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
         }
         Command::Check { scene, set } => {
-            let s = load(&scene, &set)?;
+            let s = saltus::runner::load_checked(&scene, &set)?;
             outln!("# {} resolved: every default filled in, ranges and closure needs checked", scene.display());
             out!("{}", s.to_toml()?);
         }

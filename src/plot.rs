@@ -76,15 +76,6 @@ fn default_points() -> usize {
     200
 }
 
-fn family_of(name: &str) -> anyhow::Result<EvalFamily> {
-    EvalFamily::ALL.into_iter().find(|f| f.key() == name).ok_or_else(|| {
-        anyhow!(
-            "unknown family `{name}`; known: {}",
-            EvalFamily::ALL.iter().map(|f| f.key()).collect::<Vec<_>>().join(", ")
-        )
-    })
-}
-
 /// Read a comparison file.
 pub fn load(path: &Path) -> anyhow::Result<Comparison> {
     let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
@@ -101,7 +92,7 @@ pub fn run(path: &Path, out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     let mut written = Vec::new();
     for (fi, fig) in cmp.figures.iter().enumerate() {
         let key = format!("figure[{fi}]");
-        let family = family_of(&fig.family).with_context(|| format!("{origin}: {key}.family"))?;
+        let family = EvalFamily::from_key(&fig.family).with_context(|| format!("{origin}: {key}.family"))?;
         let [a, b] = fig.range;
         if fig.points < 2 || !(a.is_finite() && b.is_finite() && a < b) || (fig.log_x && a <= 0.0) {
             bail!("{origin}: {key}: need points >= 2 and a range [from, to] with from < to (from > 0 on a log axis)");

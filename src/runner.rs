@@ -62,6 +62,8 @@ pub struct RunOutcome {
     /// things the user should know that did not fail the run (missing reference data, a
     /// figure that could not be drawn)
     pub warnings: Vec<String>,
+    /// wall-clock time of the solve (s); 0 when the run could not be set up
+    pub wall: f64,
 }
 
 /// A run that ended early but wrote its outputs: the message and the exit code.
@@ -202,6 +204,15 @@ fn eta(p: &Progress, phase_wall: f64) -> Option<f64> {
     (p.time > 0.0 && phase_wall > 0.0).then(|| left * phase_wall / p.time).filter(|e| e.is_finite())
 }
 
+/// Load a scene and check it whole: the schema with the `--set KEY=VALUE` overrides
+/// applied, then what its solver needs to start (the set-up a run does before any work).
+/// `saltus check` and the Python `saltus.check` call it, so they refuse what `run` would.
+pub fn load_checked(scene: &Path, set: &[String]) -> Result<Scene, saltus_core::Error> {
+    let s = Scene::from_file_with(scene, set)?;
+    saltus_solvers::validate(&s)?;
+    Ok(s)
+}
+
 /// Run `scene` into `out` as `settings` say, showing progress on `bar` (see
 /// [`progress_bar`]; a hidden bar gets a line on stderr every
 /// [`RunSettings::log_every`]), then draw `profiles.png` in `out` from the state the run
@@ -209,13 +220,34 @@ fn eta(p: &Progress, phase_wall: f64) -> Option<f64> {
 /// with its outputs written. Reference data that cannot be read gives a warning, not a
 /// failure.
 pub fn run_scene(scene: &Scene, out: &Path, bar: &ProgressBar, settings: &RunSettings) -> RunOutcome {
+    run_scene_with(scene, out, bar, settings, &mut |_| interrupted()).unwrap_or_else(|e| RunOutcome {
+        ending: None,
+        report: None,
+        error: Some(e.to_string()),
+        figure: None,
+        warnings: Vec::new(),
+        wall: 0.0,
+    })
+}
+
+/// [`run_scene`] for callers with their own way to stop a run: `stop` is asked after
+/// every unit of work and ends the run (`interrupted`, outputs written) when it returns
+/// true. `Err` is the solver's own error (the scene cannot be set up, the outputs cannot
+/// be written), typed for callers that tell bad input from a failed write.
+pub fn run_scene_with(
+    scene: &Scene,
+    out: &Path,
+    bar: &ProgressBar,
+    settings: &RunSettings,
+    stop: &mut dyn FnMut(&Progress) -> bool,
+) -> Result<RunOutcome, saltus_core::Error> {
     let mut last: Option<Instant> = None;
     let started = Instant::now();
     let mut next_line = settings.log_every.unwrap_or(Duration::MAX);
     let mut phase: Option<(Phase, Instant)> = None;
     let label = if bar.prefix().is_empty() { scene.meta.name.clone() } else { bar.prefix() };
     let mut observer = |p: &Progress| {
-        if interrupted() {
+        if stop(p) {
             return Control::Stop;
         }
         if phase.map(|(ph, _)| ph) != Some(p.phase) {
@@ -248,11 +280,8 @@ pub fn run_scene(scene: &Scene, out: &Path, bar: &ProgressBar, settings: &RunSet
     let options = saltus_solvers::RunOptions { restart: settings.restart.clone() };
     let result = saltus_solvers::run_with(scene, out, &mut observer, &options);
     bar.finish_and_clear();
+    let run = result?;
     let mut warnings = Vec::new();
-    let run = match result {
-        Ok(r) => r,
-        Err(e) => return RunOutcome { ending: None, report: None, error: Some(e.to_string()), figure: None, warnings },
-    };
     let png = out.join(FIGURE);
     let figure = match draw_run(scene, &run.report, &run.ending, &png, &mut warnings) {
         Ok(()) => Some(png),
@@ -266,7 +295,7 @@ pub fn run_scene(scene: &Scene, out: &Path, bar: &ProgressBar, settings: &RunSet
         Ending::Interrupted => Some(format!("interrupted at t = {:.6} s", run.report.summary.sim_time_s)),
         Ending::Steady | Ending::EndTime | Ending::MaxSteps => None,
     };
-    RunOutcome { ending: Some(run.ending), report: Some(run.report), error, figure, warnings }
+    Ok(RunOutcome { ending: Some(run.ending), report: Some(run.report), error, figure, warnings, wall: run.wall })
 }
 
 fn draw_run(

@@ -1,0 +1,350 @@
+"""saltus from Python: run scenes, check them, evaluate closures, list models.
+
+The same program as the ``saltus`` command line, bound through pyo3: one scene loader
+(with the ``--set`` overrides), one run driver, one closure evaluator, one model listing.
+Every number comes from the Rust library; this module converts arguments and results.
+
+>>> import saltus
+>>> r = saltus.run("cases/chassagne2023/case01.toml", out=False)
+>>> r.ending, round(r.summary["qs_star"], 2)
+('steady', 2.53)
+>>> saltus.Closure("drag", {"type": "stokes"}).evaluate(re_p=[0.1, 1.0])["cd"]
+array([240.,  24.])
+
+Errors: bad input raises :class:`SceneError` (a ``ValueError``) with the message the
+command line prints; a run that cannot write its outputs raises :class:`RunError`.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Dict, Iterable, List, Mapping, Optional, Union
+
+import numpy as np
+
+from . import _native
+from ._native import RunError, SceneError
+
+__all__ = [
+    "run",
+    "check",
+    "models",
+    "Closure",
+    "Result",
+    "SceneError",
+    "RunError",
+    "SaltusWarning",
+    "__version__",
+]
+
+__version__: str = _native.__version__
+
+PathLike = Union[str, "os.PathLike[str]"]
+#: ``set=``: a dict of key -> value (values are Python values that map to TOML: bool,
+#: int, float, str, dict, list), or a list of ``"KEY=VALUE"`` strings exactly as on the
+#: command line.
+Overrides = Union[Mapping[str, Any], Iterable[str], None]
+
+
+class SaltusWarning(UserWarning):
+    """Something a run met that did not fail it (reference data that cannot be read, a
+    figure that cannot be drawn): the warning the command line prints on stderr."""
+
+
+@dataclass(frozen=True, repr=False)
+class Result:
+    """The last state of a run, whatever its ending, as it was written to ``out``.
+
+    Attributes:
+        ending: ``"steady"``, ``"end_time"``, ``"max_steps"`` or ``"unstable"`` (an
+            interrupted run raises instead, see :func:`run`).
+        summary: the content of ``summary.json`` (``qs_star``, ``shields``, ``steps``, ...;
+            keys the run did not measure are absent, as in the file).
+        profiles: column name -> float64 array over the cells, ``z`` first, in the column
+            order of ``profiles.csv``. Full precision (the CSV rounds to 11 significant
+            digits); a value the solver has none for is NaN in memory and ``NaN`` in the
+            CSV.
+        text: the paragraph the command line prints.
+        out: the output folder, or None when the run went to a temporary folder
+            (``out=False``).
+        wall: wall-clock time of the solve (s).
+        figure: ``profiles.png`` in ``out``, when drawn (None with ``out=False``).
+        breakdown: for an unstable run, where it broke down: ``time``, ``place``
+            (``{"kind": "cell", "index", "z"}``, ``{"kind": "particle", "index"}`` or
+            ``{"kind": "column"}``), ``field``, ``value``, ``reason``; else None.
+        scene_toml: the resolved scene (``scene.toml``): running it reproduces the run.
+        warnings: what did not fail the run, also issued as :class:`SaltusWarning`.
+    """
+
+    ending: str
+    summary: Dict[str, Any]
+    profiles: Dict[str, np.ndarray]
+    text: str
+    out: Optional[Path]
+    wall: float
+    figure: Optional[Path] = None
+    breakdown: Optional[Dict[str, Any]] = None
+    scene_toml: str = ""
+    warnings: List[str] = field(default_factory=list)
+
+    def to_dataframe(self) -> "Any":
+        """The profiles as a pandas DataFrame, one row per cell, one column per profile.
+
+        Raises ImportError when pandas is not installed.
+        """
+        try:
+            import pandas as pd
+        except ImportError as e:
+            raise ImportError(
+                "saltus.Result.to_dataframe() needs pandas, which is not installed: "
+                "pip install pandas (or pip install 'saltus[pandas]')"
+            ) from e
+        return pd.DataFrame({k: v for k, v in self.profiles.items()})
+
+    @property
+    def profiles_df(self) -> "Any":
+        """:meth:`to_dataframe`."""
+        return self.to_dataframe()
+
+    def __repr__(self) -> str:
+        qs = self.summary.get("qs_star")
+        qs_text = f", qs*={qs:.4g}" if isinstance(qs, float) else ""
+        return (
+            f"<saltus.Result {self.summary.get('scene', '')!r} {self.ending} at "
+            f"t={self.summary.get('sim_time_s', float('nan')):.6g} s{qs_text}, "
+            f"{len(next(iter(self.profiles.values()), []))} cells, out={self.out}>"
+        )
+
+
+def _path(p: PathLike, what: str) -> str:
+    try:
+        return os.fspath(p)
+    except TypeError:
+        raise TypeError(f"{what}: expected a path (str or os.PathLike), found {type(p).__name__}") from None
+
+
+def run(
+    scene: PathLike,
+    set: Overrides = None,
+    out: Union[PathLike, None, bool] = None,
+    quiet: bool = True,
+    restart: Optional[PathLike] = None,
+) -> Result:
+    """Run a scene, as ``saltus run SCENE --set K=V ... --out DIR``.
+
+    Args:
+        scene: the scene file (str or os.PathLike).
+        set: overrides applied in order, with the command line's ``--set`` semantics
+            (dotted keys; a table value replaces the whole table, so
+            ``{"closures.drag": {"type": "stokes"}}`` switches the model): a dict
+            ``{"physics.slope": 0.02, "solver.type": "lagrangian"}`` whose values are
+            Python values written as TOML, or a list of ``"KEY=VALUE"`` strings taken
+            as on the command line (``'closures.drag={type="stokes"}'``).
+        out: the output folder; None (default) as the command line: the scene's
+            ``output.dir``, else ``out/<meta.name>``, relative to the current folder.
+            ``False``: a temporary folder, removed before returning (the Result keeps
+            everything in memory; ``Result.out`` and ``Result.figure`` are None).
+        quiet: False shows the command line's progress on stderr (a bar on a terminal,
+            else a line every 30 s) and prints the summary paragraph.
+        restart: a folder holding a DEM checkpoint (``checkpoint.bin``, written at
+            every interrupt and every ``output.checkpoint_interval``): the run continues
+            from it, bit-identically to a run that was never stopped, as
+            ``saltus run SCENE --restart DIR``.
+
+    Returns:
+        the :class:`Result` of the last state, written to ``out`` (``profiles.csv``,
+        ``summary.json``, ``scene.toml``, ``manifest.json``, ``profiles.png``).
+        An unstable run returns too (``ending == "unstable"``, the last good state, the
+        breakdown in ``Result.breakdown`` and ``summary["error"]``), as the command line
+        writes it and exits 3: check ``result.ending``.
+
+    Raises:
+        SceneError: the scene does not load, or its solver cannot start on it.
+        RunError: the outputs cannot be written.
+        KeyboardInterrupt: Ctrl-C (SIGINT) during the run: the run stops after its
+            current unit of work (within 0.2 s of wall time), writes the state of that
+            time (``ending = "interrupted"`` in summary.json), then the exception is
+            raised with that Result as its ``result`` attribute. Any exception a Python
+            signal handler raises stops the run the same way.
+
+    The run itself holds no GIL: other Python threads go on meanwhile.
+    """
+    scene_path = _path(scene, "scene")
+    from_dir = None if restart is None else _path(restart, "restart")
+    if out is False:
+        with tempfile.TemporaryDirectory(prefix="saltus-") as tmp:
+            raw = _native.run(scene_path, set, tmp, quiet, from_dir)
+            raw["out"] = None
+            raw["figure"] = None
+    elif out is None:
+        raw = _native.run(scene_path, set, None, quiet, from_dir)
+    else:
+        raw = _native.run(scene_path, set, _path(out, "out"), quiet, from_dir)
+    interrupt = raw.pop("interrupt")
+    result = Result(
+        ending=raw["ending"],
+        summary=raw["summary"],
+        profiles=raw["profiles"],
+        text=raw["text"],
+        out=None if raw["out"] is None else Path(raw["out"]),
+        wall=raw["wall"],
+        figure=None if raw["figure"] is None else Path(raw["figure"]),
+        breakdown=raw["breakdown"],
+        scene_toml=raw["scene_toml"] or "",
+        warnings=list(raw["warnings"]),
+    )
+    for w in result.warnings:
+        warnings.warn(w, SaltusWarning, stacklevel=2)
+    if not quiet:
+        print(result.text)
+        if result.out is not None:
+            print(f"outputs: {result.out}")
+    if interrupt is not None:
+        try:
+            interrupt.result = result
+        except (AttributeError, TypeError):
+            pass
+        raise interrupt
+    return result
+
+
+def check(scene: PathLike, set: Overrides = None, *, toml: bool = False) -> Union[Dict[str, Any], str]:
+    """Check a scene as ``saltus check SCENE --set K=V ...``: parse it, fill every default,
+    check ranges and closure needs and set up its solver without running it.
+
+    Returns the resolved scene (every default filled in, the one ``scene.toml`` of a run
+    holds) as a dict, or as its TOML text with ``toml=True``.
+
+    Raises:
+        SceneError: with the command line's message, and ``file`` and ``key`` attributes.
+    """
+    resolved, text = _native.check(_path(scene, "scene"), set)
+    return text if toml else resolved
+
+
+def models(family: Optional[str] = None) -> List[Dict[str, Any]]:
+    """Every registered closure model, as ``saltus models [FAMILY] --json``: a list of
+    ``{"family", "name", "equation", "source", "parameters": [{"name", "default",
+    "range", "unit", "doc"}]}``.
+
+    Args:
+        family: ``drag``, ``hindrance``, ``viscosity``, ``granular``, ``turbulence`` or
+            ``fluctuation``; None for all.
+
+    Raises:
+        ValueError: an unknown family (the message lists the known ones).
+    """
+    return _native.models(family)
+
+
+class Closure:
+    """One closure model, evaluated on arrays as ``saltus closure eval`` does on a CSV.
+
+    Args:
+        family: ``drag``, ``hindrance``, ``viscosity``, ``granular`` (local rheologies:
+            mu_i, mu_k), ``kinetic_theory`` (the coefficients of a
+            ``frictional_collisional`` table, whose ``type`` may be left out),
+            ``turbulence`` or ``fluctuation``.
+        model: the model's table, as in a scene's ``[closures.<family>]``: a dict
+            ``{"type": "richardson_zaki", "exponent": 4.65}`` or TOML text
+            (``'type = "stokes"'`` or ``'{type = "stokes"}'``).
+        seed: seed of the fluctuation draws (row i uses stream i of the seed), as
+            ``--seed``.
+
+    Inputs and outputs per family (the CSV columns of ``saltus closure eval --help``):
+
+    ==============  ==================================================  ==================================
+    family          inputs                                              outputs
+    ==============  ==================================================  ==================================
+    drag            re_p                                                cd
+    hindrance       phi, re_p (interstitial Reynolds number)            factor
+    viscosity       phi                                                 nu_ratio
+    granular        i (mu_i) or k (mu_k)                                mu, phi
+    kinetic_theory  phi                                                 g0, f1, f2, f3, f4, e_eff
+    turbulence      z, phi, dudz, d (cells of one column from the       l_m, nu_t
+                    bottom wall, z increasing; d one grain diameter)
+    fluctuation     k, omega, nu_t, reynolds_stress, slip,              diffusivity, u_x, u_y, u_z,
+                    response_time, depth, bulk_velocity (absent: 0,     duration
+                    except those the model needs)
+    ==============  ==================================================  ==================================
+
+    Raises:
+        SceneError: the table does not load (unknown model or key, out-of-range value,
+            TOML syntax), with ``file`` = ``"saltus.Closure"`` and the key path under the
+            family (``drag.type``).
+        ValueError: an unknown family.
+    """
+
+    def __init__(self, family: str, model: Union[Mapping[str, Any], str], *, seed: int = 0) -> None:
+        if isinstance(model, Mapping) and not isinstance(model, dict):
+            model = dict(model)
+        self._native = _native.Closure(family, model)
+        self.seed = int(seed)
+
+    @property
+    def family(self) -> str:
+        """The family, as given."""
+        return self._native.family
+
+    @property
+    def name(self) -> str:
+        """The model's registered name (its ``type``)."""
+        return self._native.name
+
+    @property
+    def input_names(self) -> List[str]:
+        """Every input name the family reads."""
+        return list(self._native.input_names)
+
+    @property
+    def output_names(self) -> List[str]:
+        """The names :meth:`evaluate` returns, in order."""
+        return list(self._native.output_names)
+
+    def describe(self) -> Dict[str, Any]:
+        """The model as ``saltus models --json`` lists it (family, name, equation, source,
+        parameters), each parameter with its configured ``value`` beside its ``default``."""
+        return self._native.describe()
+
+    @property
+    def params(self) -> List[Dict[str, Any]]:
+        """The model's parameters: ``name``, ``value``, ``default``, ``range``, ``unit``,
+        ``doc`` (nested tables as dotted names, ``g0.a0``)."""
+        return self.describe()["parameters"]
+
+    def evaluate(self, *, seed: Optional[int] = None, **inputs: Any) -> Dict[str, np.ndarray]:
+        """Evaluate on arrays named like the CSV columns; returns name -> float64 array.
+
+        Inputs broadcast against each other as numpy arrays do (scalars included); the
+        outputs have the broadcast shape. Values must be finite. An input name the
+        family does not read is refused (a misspelt optional input would silently be 0).
+
+        Args:
+            seed: overrides the closure's seed for this call (fluctuation draws).
+
+        Raises:
+            TypeError: an input name the family does not read.
+            ValueError: a missing input, a value out of its range (phi in [0, 1), re_p >=
+                0), a non-finite value; the command line's message with rows counted
+                from 0 over the flattened broadcast arrays.
+        """
+        accepted = set(self._native.input_names)
+        unknown = [k for k in inputs if k not in accepted]
+        if unknown:
+            raise TypeError(
+                f"Closure({self.family!r}).evaluate: unknown input {', '.join(map(repr, unknown))}; "
+                f"family {self.family} reads {', '.join(self._native.input_names)}"
+            )
+        names = list(inputs)
+        arrays = np.broadcast_arrays(*(np.asarray(inputs[k], dtype=np.float64) for k in names)) if names else []
+        shape = arrays[0].shape if names else (0,)
+        flat = {k: np.ascontiguousarray(a).reshape(-1) for k, a in zip(names, arrays)}
+        out = self._native.evaluate_arrays(flat, self.seed if seed is None else int(seed))
+        return {k: v.reshape(shape) for k, v in out.items()}
+
+    def __repr__(self) -> str:
+        return f"saltus.Closure({self.family!r}, {self.name!r})"

@@ -1,0 +1,36 @@
+"""Type stubs of the Rust extension ``saltus._native`` (see ``saltus/__init__.py`` for the API)."""
+
+from typing import Any, Dict, Iterable, List, Mapping, Optional, Tuple, Union
+
+import numpy as np
+
+__version__: str
+
+class SceneError(ValueError):
+    file: Optional[str]
+    key: Optional[str]
+
+class RunError(RuntimeError):
+    file: Optional[str]
+    key: Optional[str]
+
+_Overrides = Union[Mapping[str, Any], Iterable[str], None]
+
+def check(scene: str, set: _Overrides = None) -> Tuple[Dict[str, Any], str]: ...
+def run(
+    scene: str, set: _Overrides = None, out: Optional[str] = None, quiet: bool = True, restart: Optional[str] = None
+) -> Dict[str, Any]: ...
+def models(family: Optional[str] = None) -> List[Dict[str, Any]]: ...
+
+class Closure:
+    def __init__(self, family: str, model: Union[Dict[str, Any], str]) -> None: ...
+    @property
+    def family(self) -> str: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def input_names(self) -> List[str]: ...
+    @property
+    def output_names(self) -> List[str]: ...
+    def describe(self) -> Dict[str, Any]: ...
+    def evaluate_arrays(self, inputs: Dict[str, np.ndarray], seed: int) -> Dict[str, np.ndarray]: ...
