@@ -3,7 +3,7 @@
 //! driver's view of the run in [`super::stepper`].
 
 use std::borrow::Cow;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
 use saltus_core::scene::Scene;
@@ -77,8 +77,11 @@ pub struct Lagrangian<'a> {
     pub(super) mat: Material,
     rho_f: f64,
     pub(super) bed_surface: f64,
-    vtk_dir: Option<PathBuf>,
-    vtk_count: usize,
+    /// the ParaView snapshot series, when `solver.lagrangian.vtk_period` > 0 and the
+    /// driver gave a folder
+    vtk: Option<super::vtk::Series>,
+    /// why the first snapshot that failed was not written
+    vtk_error: Option<String>,
     pub(super) next_vtk: f64,
     pub(super) seed: u64,
     pub(super) zero_faces: Vec<f64>,
@@ -211,8 +214,8 @@ impl<'a> Lagrangian<'a> {
             mat,
             rho_f: scene.fluid.density,
             bed_surface: cfg.bed_surface(),
-            vtk_dir: None,
-            vtk_count: 0,
+            vtk: None,
+            vtk_error: None,
             next_vtk: 0.0,
             seed: scene.seed,
             zero_faces: vec![0.0; cells + 1],
@@ -223,11 +226,22 @@ impl<'a> Lagrangian<'a> {
         })
     }
 
-    /// Write VTK particle snapshots into `dir` every `solver.lagrangian.vtk_period` (if > 0).
+    /// Write ParaView snapshots ([`super::vtk`]) into `dir` every
+    /// `solver.lagrangian.vtk_period` of flow time (if > 0).
     pub fn set_vtk_dir(&mut self, dir: &Path) {
         if self.cfg.settings.numerics.vtk_period > 0.0 {
-            self.vtk_dir = Some(dir.to_path_buf());
+            self.vtk = Some(super::vtk::Series::new(dir));
         }
+    }
+
+    /// The snapshot series, when snapshots are written.
+    pub fn vtk_series(&self) -> Option<&super::vtk::Series> {
+        self.vtk.as_ref()
+    }
+
+    /// Why a snapshot was not written (the first failure), if one was not.
+    pub fn vtk_error(&self) -> Option<&str> {
+        self.vtk_error.as_deref()
     }
 
     /// The scene.
@@ -452,7 +466,7 @@ impl<'a> Lagrangian<'a> {
         if update {
             let r = if fluid == FluidMode::Off { self.check() } else { self.fluid_update() };
             r.map_err(Ending::Unstable)?;
-            if self.vtk_dir.is_some() && self.time >= self.next_vtk {
+            if self.vtk.is_some() && self.time >= self.next_vtk {
                 self.write_vtk();
                 self.next_vtk += self.cfg.settings.numerics.vtk_period;
             }
@@ -482,11 +496,13 @@ impl<'a> Lagrangian<'a> {
     }
 
     fn write_vtk(&mut self) {
-        if let Some(dir) = &self.vtk_dir {
-            let f = dir.join(format!("particles_{:05}.vtk", self.vtk_count));
-            // a failed snapshot does not stop the run; the summary still tells the result
-            let _ = std::fs::create_dir_all(dir).and_then(|_| std::fs::write(&f, super::vtk::legacy(&self.dem.p)));
-            self.vtk_count += 1;
+        let column = (self.cfg.settings.numerics.fluid != FluidMode::Off).then_some(&self.field);
+        if let Some(series) = self.vtk.as_mut() {
+            // a failed snapshot does not stop the run (the report tells it); the summary
+            // still tells the result
+            if let Err(e) = series.write(self.time, &self.dem.p, column) {
+                self.vtk_error.get_or_insert_with(|| e.to_string());
+            }
         }
     }
 
