@@ -31,6 +31,7 @@ pub use domain::{Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT};
 pub use lagrangian::{Case, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, MAX_PARTICLES, MAX_SIDE_DIAMETERS};
 pub use overrides::{apply_override, parse_table};
 pub use solver::{
+    default_elastic_phi_rlp, ELASTIC_PHI_RLP,
     Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver, SolverKind, Surface,
     MAX_TIME,
 };
@@ -255,6 +256,9 @@ impl Scene {
                 }),
             };
         }
+        if self.solver.eulerian.elastic_phi_rlp.is_none() {
+            self.solver.eulerian.elastic_phi_rlp = self.closures.max_packing().map(solver::default_elastic_phi_rlp);
+        }
         let dir = self.path.parent().map(Path::to_path_buf).unwrap_or_default();
         for r in &mut self.reference {
             r.file = absolute(&dir, &r.file);
@@ -296,18 +300,18 @@ impl Scene {
                         return Err(Error::OutOfRange {
                             file: f.into(),
                             key: k.into(),
-                            value: v.to_string(),
+                            value: crate::param::number(v),
                             allowed: why,
                         });
                     }
                 }
-                let rlp = self.solver.eulerian.elastic_phi_rlp;
+                let rlp = self.solver.eulerian.elastic_phi_rlp.unwrap_or_else(|| solver::default_elastic_phi_rlp(phi_max));
                 let local = self.closures.granular.as_deref().and_then(|g| g.as_local()).is_some();
                 if local && rlp >= phi_max {
                     return Err(Error::OutOfRange {
                         file: f.into(),
                         key: "solver.eulerian.elastic_phi_rlp".into(),
-                        value: rlp.to_string(),
+                        value: crate::param::number(rlp),
                         allowed: format!("< {phi_max} (the closure's packing at zero shear)"),
                     });
                 }

@@ -26,6 +26,10 @@ use crate::run::{Breakdown, Ending, Place};
 /// stiffness.
 pub const MAX_SPEED: f64 = 100.0;
 
+/// Most DEM steps a scene may ask for (deposition and flow): the top of the range of
+/// `solver.lagrangian.max_steps`.
+pub const MAX_DEM_STEPS: f64 = 1e15;
+
 /// DEM steps between two checks of the state (and two returns to the driver) when the
 /// fluid period is longer: the state is checked at every fluid update and at least this
 /// often.
@@ -172,6 +176,28 @@ impl<'a> Lagrangian<'a> {
         } else {
             None
         };
+        // the steps the scene asks, known before the first: a time step that underflows
+        // (dt_safety or a stiffness at the end of their ranges) would otherwise make the
+        // deposition and the flow crawl for ever
+        let asked = (s.settle_time + s.numerics.end_time) / dt;
+        if !(dt > 0.0 && asked <= MAX_DEM_STEPS) {
+            let stiffness = match s.contact {
+                ContactModel::Linear => "particles.contact.stiffness",
+                ContactModel::Hertz => "particles.contact.young",
+            };
+            return Err(Error::Key {
+                file: scene.path.clone(),
+                key: "solver.lagrangian.dt_safety".into(),
+                message: format!(
+                    "{} with {stiffness} gives a DEM time step of {} s, and solver.lagrangian.settle_time + end_time = {} s then takes {} steps, more than {}; raise dt_safety, soften the contact or shorten the run",
+                    saltus_core::param::number(s.numerics.dt_safety),
+                    saltus_core::param::number(dt),
+                    saltus_core::param::number(s.settle_time + s.numerics.end_time),
+                    saltus_core::param::number(asked),
+                    saltus_core::param::number(MAX_DEM_STEPS),
+                ),
+            });
+        }
         let fluid_every = ((s.numerics.fluid_period / dt).round() as u64).max(1);
         let pool = super::stepper::pool(s.numerics.threads, &scene.path)?;
         let deposit = cfg.settings.numerics.initial == Initial::Bed;
@@ -390,14 +416,33 @@ impl<'a> Lagrangian<'a> {
                     place: Place::Particle { index: a },
                     field: Cow::Borrowed("|v|"),
                     value: s2.sqrt(),
-                    reason: format!(
-                        "speed above {MAX_SPEED} m/s at z = {:.6} m: the time step is too large for the contact stiffness (lower solver.lagrangian.dt_safety) or the driving too strong",
-                        p.z[a]
-                    ),
+                    reason: self.speed_cause(p.z[a]),
                 });
             }
         }
         Ok(())
+    }
+
+    /// Why a particle at height z outran [`MAX_SPEED`]: carried there by the fluid (a
+    /// fluid period too long for the explicit coupling, or a driving too strong), or
+    /// thrown by the contacts (a time step too large for their stiffness).
+    fn speed_cause(&self, z: f64) -> String {
+        let u = self.field.velocity(z);
+        let at = format!("speed above {MAX_SPEED} m/s at z = {} m", saltus_core::param::decimal(z));
+        if u.abs() > 0.5 * MAX_SPEED {
+            format!(
+                "{at}, where the fluid moves at {} m/s: the driving is too strong or solver.lagrangian.fluid_period = {} s too long for the coupling",
+                saltus_core::param::number(u),
+                saltus_core::param::number(self.cfg.settings.numerics.fluid_period)
+            )
+        } else {
+            format!(
+                "{at}, the fluid there at {} m/s: the contacts threw it, the time step {} s is too large for the contact stiffness (lower solver.lagrangian.dt_safety = {})",
+                saltus_core::param::number(u),
+                saltus_core::param::number(self.dem.dt()),
+                saltus_core::param::number(self.cfg.settings.numerics.dt_safety)
+            )
+        }
     }
 
     /// One fluid update: averages, column solve, field refresh, statistics.
@@ -414,6 +459,21 @@ impl<'a> Lagrangian<'a> {
                     field: Cow::Borrowed("u_f"),
                     value: f64::NAN,
                     reason: e.to_string(),
+                });
+            }
+            // a runaway column (a fluid period far beyond the particles' response time
+            // leaves the drag no hold on it) is stopped here with its cause, before the
+            // particles it would fling blow up
+            if let Some((c, &u)) = col.velocity().iter().enumerate().find(|(_, u)| !(u.abs() <= MAX_SPEED)) {
+                return Err(Breakdown {
+                    time: self.time,
+                    place: Place::Cell { index: c, z: col.grid().centres()[c] },
+                    field: Cow::Borrowed("u_f"),
+                    value: u,
+                    reason: format!(
+                        "fluid velocity above {MAX_SPEED} m/s: the driving is too strong or solver.lagrangian.fluid_period = {} s too long for the coupling",
+                        saltus_core::param::number(tau_f)
+                    ),
                 });
             }
             self.field.u.copy_from_slice(col.velocity());
