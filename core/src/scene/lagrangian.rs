@@ -257,8 +257,7 @@ impl LagrangianSettings {
             check(f, &p("length"), l, ParamRange::open_closed(2.0 * cut, MAX_SIDE_DIAMETERS * d))?;
         }
         if let Some(w) = self.width {
-            let range =
-                if self.side_walls { side } else { ParamRange::open_closed(2.0 * cut, MAX_SIDE_DIAMETERS * d) };
+            let range = if self.side_walls { side } else { ParamRange::open_closed(2.0 * cut, MAX_SIDE_DIAMETERS * d) };
             check(f, &p("width"), w, range)?;
         }
         check(f, &p("height"), self.height, ParamRange::closed(0.0, MAX_SIDE_DIAMETERS * d))?;

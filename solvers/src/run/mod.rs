@@ -66,7 +66,15 @@ pub struct Breakdown {
 
 impl fmt::Display for Breakdown {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "t = {} s: {} = {} in {}: {}", decimal(self.time), self.field, number(self.value), self.place, self.reason)
+        write!(
+            f,
+            "t = {} s: {} = {} in {}: {}",
+            decimal(self.time),
+            self.field,
+            number(self.value),
+            self.place,
+            self.reason
+        )
     }
 }
 
