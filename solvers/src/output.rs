@@ -199,8 +199,10 @@ impl TransportScales {
         let stress = (rho_p - rho_f).abs() * g * d;
         let slope = scene.physics.slope;
         let cos = (1.0 - slope * slope).max(0.0).sqrt();
-        let shields_nominal =
-            (slope > 0.0 && water_depth > 0.0 && sm1 > 0.0).then(|| rho_f * g * slope * water_depth / (stress * cos));
+        // undefined (absent) without a stress scale: no gravity or no density contrast
+        let shields_nominal = (slope > 0.0 && water_depth > 0.0 && sm1 > 0.0)
+            .then(|| rho_f * g * slope * water_depth / (stress * cos))
+            .and_then(finite);
         Self { qs: (sm1.abs() * g * d * d * d).sqrt(), stress, shields_nominal }
     }
 
