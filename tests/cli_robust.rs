@@ -277,7 +277,7 @@ fn a_dem_run_writes_a_paraview_series_that_reads_back() {
     }
     assert_eq!(entries.iter().filter(|e| e.1 == 1).count(), 5, "a column per snapshot");
     // the last particle snapshot holds the particles of the run, at finite positions
-    let last = &entries.iter().filter(|e| e.1 == 0).last().unwrap().2;
+    let last = &entries.iter().rfind(|e| e.1 == 0).unwrap().2;
     let text = std::fs::read_to_string(vtk.join(last)).unwrap();
     let points = read_array(&text, "Points");
     let n = summary(&out)["particles"].as_u64().unwrap() as usize;
@@ -287,7 +287,7 @@ fn a_dem_run_writes_a_paraview_series_that_reads_back() {
     assert!(points.iter().all(|v| v.is_finite()));
     // positions are wrapped into the periodic box at the neighbour-list builds only
     assert!(points.chunks(3).all(|p| p[0] > -6e-3 && p[0] < 0.036 && p[2] >= 0.0 && p[2] < 0.05));
-    let column = entries.iter().filter(|e| e.1 == 1).last().unwrap();
+    let column = entries.iter().rfind(|e| e.1 == 1).unwrap();
     let text = std::fs::read_to_string(vtk.join(&column.2)).unwrap();
     let u = read_array(&text, "u_f");
     assert_eq!(u.len() as u64, summary(&out)["cells"].as_u64().unwrap(), "one point per cell of the column");

@@ -374,7 +374,7 @@ impl LagrangianSettings {
         }
         // a column thinner than a grain resolves nothing, and one of 1e-308 m has cells
         // that underflow: its momentum system is singular at the first fluid update
-        if self.fluid != FluidMode::Off && self.bottom != Bottom::Periodic && !(c.bed_height + c.water_depth >= c.d) {
+        if self.fluid != FluidMode::Off && self.bottom != Bottom::Periodic && c.bed_height + c.water_depth < c.d {
             return Err(key_error(
                 f,
                 "domain.water_depth",

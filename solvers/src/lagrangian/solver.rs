@@ -180,7 +180,7 @@ impl<'a> Lagrangian<'a> {
         // (dt_safety or a stiffness at the end of their ranges) would otherwise make the
         // deposition and the flow crawl for ever
         let asked = (s.settle_time + s.numerics.end_time) / dt;
-        if !(dt > 0.0 && asked <= MAX_DEM_STEPS) {
+        if dt.is_nan() || dt <= 0.0 || asked.is_nan() || asked > MAX_DEM_STEPS {
             let stiffness = match s.contact {
                 ContactModel::Linear => "particles.contact.stiffness",
                 ContactModel::Hertz => "particles.contact.young",
@@ -464,7 +464,7 @@ impl<'a> Lagrangian<'a> {
             // a runaway column (a fluid period far beyond the particles' response time
             // leaves the drag no hold on it) is stopped here with its cause, before the
             // particles it would fling blow up
-            if let Some((c, &u)) = col.velocity().iter().enumerate().find(|(_, u)| !(u.abs() <= MAX_SPEED)) {
+            if let Some((c, &u)) = col.velocity().iter().enumerate().find(|(_, u)| u.is_nan() || u.abs() > MAX_SPEED) {
                 return Err(Breakdown {
                     time: self.time,
                     place: Place::Cell { index: c, z: col.grid().centres()[c] },
