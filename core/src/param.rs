@@ -78,7 +78,8 @@ impl ParamRange {
 pub fn number(x: f64) -> String {
     // ten significant digits: a bound computed as 2 (1 + skin) d prints as 0.0132, not as
     // 0.013200000000000002
-    let x = format!("{x:.9e}").parse::<f64>().unwrap_or(x);
+    // (f64::MAX rounds up past the largest double: it keeps its digits)
+    let x = format!("{x:.9e}").parse::<f64>().ok().filter(|r| r.is_finite() || !x.is_finite()).unwrap_or(x);
     let a = x.abs();
     if x == 0.0 || !x.is_finite() || (1e-4..1e6).contains(&a) {
         format!("{x}")
@@ -201,6 +202,15 @@ mod tests {
         assert_eq!(number(0.05), "0.05");
         assert_eq!(number(f64::NAN), "NaN");
         assert_eq!(ParamRange::closed(1e-7, f64::MAX).to_string(), "[1e-7, 1.7976931348623157e308]");
+        assert_eq!(number(2.0 * 0.006 * 1.1), "0.0132");
+        assert_eq!(number(f64::INFINITY), "inf");
+    }
+
+    #[test]
+    fn small_times_keep_their_digits() {
+        assert_eq!(decimal(0.0), "0.000000");
+        assert_eq!(decimal(3.0), "3.000000");
+        assert_eq!(decimal(7.29e-8), "7.29000e-8");
     }
 
     #[test]
