@@ -16,6 +16,21 @@ macro_rules! errln {
     }};
 }
 
+/// `e` with each of its causes once: an error whose text already ends with its cause's
+/// (an I/O error that names its OS error and also chains it) does not repeat it, which
+/// anyhow's `{:#}` would.
+pub fn describe(e: &anyhow::Error) -> String {
+    let mut s = e.to_string();
+    for cause in e.chain().skip(1) {
+        let t = cause.to_string();
+        if !s.ends_with(&t) {
+            s.push_str(": ");
+            s.push_str(&t);
+        }
+    }
+    s
+}
+
 pub mod compare;
 pub mod errors;
 pub mod eval;

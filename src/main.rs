@@ -153,7 +153,7 @@ fn main() -> ExitCode {
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            saltus::errln!("error: {e:#}");
+            saltus::errln!("error: {}", saltus::describe(&e));
             // a run stopped early wrote its outputs and says how it stopped; anything
             // else is a failure before or around the work
             ExitCode::from(

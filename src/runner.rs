@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use saltus_core::param::decimal;
 use saltus_core::scene::Scene;
 use saltus_solvers::run::{Control, Phase};
 use saltus_solvers::{Ending, Progress, RunReport};
@@ -95,7 +96,8 @@ impl RunOutcome {
             Ending::Unstable(b) => Some(Stopped {
                 code: EXIT_UNSTABLE,
                 message: format!(
-                    "{file}: run stopped, unstable at {b}; the last good state (t = {t:.6} s) is written to {}{drawn}",
+                    "{file}: run stopped, unstable at {b}; the last good state (t = {} s) is written to {}{drawn}",
+                    decimal(t),
                     out.display()
                 ),
             }),
@@ -111,7 +113,8 @@ impl RunOutcome {
                 Some(Stopped {
                     code: EXIT_INTERRUPTED,
                     message: format!(
-                        "{file}: interrupted at t = {t:.6} s of flow; the state at that time is written to {}{drawn}{resume}",
+                        "{file}: interrupted at t = {} s of flow; the state at that time is written to {}{drawn}{resume}",
+                        decimal(t),
                         out.display()
                     ),
                 })
@@ -292,7 +295,7 @@ pub fn run_scene_with(
     };
     let error = match &run.ending {
         Ending::Unstable(b) => Some(format!("unstable at {b}")),
-        Ending::Interrupted => Some(format!("interrupted at t = {:.6} s", run.report.summary.sim_time_s)),
+        Ending::Interrupted => Some(format!("interrupted at t = {} s", decimal(run.report.summary.sim_time_s))),
         Ending::Steady | Ending::EndTime | Ending::MaxSteps => None,
     };
     Ok(RunOutcome { ending: Some(run.ending), report: Some(run.report), error, figure, warnings, wall: run.wall })

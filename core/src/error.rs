@@ -9,8 +9,8 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 /// Everything that can go wrong before or during a run, with enough context to fix it.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    /// The file could not be read.
-    #[error("{file}: cannot read: {source}")]
+    /// The file or folder could not be read or written.
+    #[error("{file}: {source}")]
     Io {
         /// offending file
         file: PathBuf,

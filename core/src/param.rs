@@ -76,11 +76,26 @@ impl ParamRange {
 /// exponent notation outside (1e-308 and f64::MAX would otherwise print with over 300
 /// digits), `NaN` and `inf` as such.
 pub fn number(x: f64) -> String {
+    // ten significant digits: a bound computed as 2 (1 + skin) d prints as 0.0132, not as
+    // 0.013200000000000002
+    // (f64::MAX rounds up past the largest double: it keeps its digits)
+    let x = format!("{x:.9e}").parse::<f64>().ok().filter(|r| r.is_finite() || !x.is_finite()).unwrap_or(x);
     let a = x.abs();
     if x == 0.0 || !x.is_finite() || (1e-4..1e6).contains(&a) {
         format!("{x}")
     } else {
         format!("{x:e}")
+    }
+}
+
+/// A time or a height for a message: six decimals from 0.1 up (and for exactly 0), six
+/// significant digits below, where six decimals would print an early instability at
+/// t = 1e-7 s as `0.000000`.
+pub fn decimal(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || x.abs() >= 0.1 {
+        format!("{x:.6}")
+    } else {
+        format!("{x:.5e}")
     }
 }
 
@@ -187,6 +202,15 @@ mod tests {
         assert_eq!(number(0.05), "0.05");
         assert_eq!(number(f64::NAN), "NaN");
         assert_eq!(ParamRange::closed(1e-7, f64::MAX).to_string(), "[1e-7, 1.7976931348623157e308]");
+        assert_eq!(number(2.0 * 0.006 * 1.1), "0.0132");
+        assert_eq!(number(f64::INFINITY), "inf");
+    }
+
+    #[test]
+    fn small_times_keep_their_digits() {
+        assert_eq!(decimal(0.0), "0.000000");
+        assert_eq!(decimal(3.0), "3.000000");
+        assert_eq!(decimal(7.29e-8), "7.29000e-8");
     }
 
     #[test]

@@ -24,7 +24,9 @@ impl Profiles {
     pub fn get(&self, name: &str) -> Option<&[f64]> {
         self.columns.iter().find(|(n, _)| n == name).map(|(_, v)| v.as_slice())
     }
-    /// CSV text with a header line.
+    /// CSV text with a header line. A value that is not a finite number (undefined there,
+    /// e.g. the inertial number where the grains carry no pressure) is an empty cell:
+    /// no `NaN` or `inf` is ever written.
     pub fn to_csv(&self) -> String {
         let mut s = self.columns.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(",");
         s.push('\n');
@@ -34,7 +36,9 @@ impl Profiles {
                 if k > 0 {
                     s.push(',');
                 }
-                let _ = write!(s, "{:.10e}", v[r]);
+                if v[r].is_finite() {
+                    let _ = write!(s, "{:.10e}", v[r]);
+                }
             }
             s.push('\n');
         }
@@ -195,8 +199,10 @@ impl TransportScales {
         let stress = (rho_p - rho_f).abs() * g * d;
         let slope = scene.physics.slope;
         let cos = (1.0 - slope * slope).max(0.0).sqrt();
-        let shields_nominal =
-            (slope > 0.0 && water_depth > 0.0 && sm1 > 0.0).then(|| rho_f * g * slope * water_depth / (stress * cos));
+        // undefined (absent) without a stress scale: no gravity or no density contrast
+        let shields_nominal = (slope > 0.0 && water_depth > 0.0 && sm1 > 0.0)
+            .then(|| rho_f * g * slope * water_depth / (stress * cos))
+            .and_then(finite);
         Self { qs: (sm1.abs() * g * d * d * d).sqrt(), stress, shields_nominal }
     }
 
@@ -271,8 +277,10 @@ mod tests {
         let mut p = Profiles::default();
         p.push("z", vec![0.5, 1.5]);
         p.push("phi", vec![0.6, 0.0]);
+        p.push("inertial_number", vec![0.1, f64::INFINITY]);
         let csv = p.to_csv();
-        assert!(csv.starts_with("z,phi\n"));
+        assert!(csv.starts_with("z,phi,inertial_number\n"));
         assert_eq!(csv.lines().count(), 3);
+        assert!(csv.ends_with(",0.0000000000e0,\n"), "undefined is an empty cell: {csv}");
     }
 }

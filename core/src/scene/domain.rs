@@ -27,6 +27,9 @@ pub const MAX_HEIGHT: f64 = 1.0e3;
 
 /// Most cells of the Eulerian column.
 pub const MAX_CELLS: usize = 100_000;
+/// Decades that the cell widths of a stretched grid may span (largest over first, r^(n-1)
+/// at most 1e4; see the check of the Eulerian scene).
+pub const MAX_STRETCH_DECADES: f64 = 4.0;
 
 /// Cells per grain diameter of the default Eulerian grid (d/4, Chassagne et al. 2023).
 pub const CELLS_PER_DIAMETER: f64 = 4.0;

@@ -254,11 +254,10 @@ impl LagrangianSettings {
         check(f, &p("skin"), self.skin, ParamRange::open_closed(0.0, 2.0))?;
         if let Some(l) = self.length {
             // minimum image: a particle must not meet two images of another
-            check(f, &p("length"), l, ParamRange::closed(2.0 * cut + 1e-12, MAX_SIDE_DIAMETERS * d))?;
+            check(f, &p("length"), l, ParamRange::open_closed(2.0 * cut, MAX_SIDE_DIAMETERS * d))?;
         }
         if let Some(w) = self.width {
-            let range =
-                if self.side_walls { side } else { ParamRange::closed(2.0 * cut + 1e-12, MAX_SIDE_DIAMETERS * d) };
+            let range = if self.side_walls { side } else { ParamRange::open_closed(2.0 * cut, MAX_SIDE_DIAMETERS * d) };
             check(f, &p("width"), w, range)?;
         }
         check(f, &p("height"), self.height, ParamRange::closed(0.0, MAX_SIDE_DIAMETERS * d))?;
@@ -317,7 +316,7 @@ impl LagrangianSettings {
         }
         let cut = c.d * (1.0 + self.skin);
         if self.bottom == Bottom::Periodic {
-            check(f, &p("height"), self.height, ParamRange::closed(2.0 * cut + 1e-12, MAX_SIDE_DIAMETERS * c.d))?;
+            check(f, &p("height"), self.height, ParamRange::open_closed(2.0 * cut, MAX_SIDE_DIAMETERS * c.d))?;
             if self.fluid == FluidMode::Coupled {
                 return Err(key_error(
                     f,
@@ -345,7 +344,7 @@ impl LagrangianSettings {
             Initial::Gas => {
                 check(f, &p("gas_phi"), self.gas_phi, ParamRange::open(0.0, 0.5))?;
                 check(f, &p("gas_temperature"), self.gas_temperature, ParamRange::positive())?;
-                check(f, &p("height"), self.height, ParamRange::closed(2.0 * cut + 1e-12, MAX_SIDE_DIAMETERS * c.d))?;
+                check(f, &p("height"), self.height, ParamRange::open_closed(2.0 * cut, MAX_SIDE_DIAMETERS * c.d))?;
                 self.particles.map_or(count(self.height, self.gas_phi), |n| n as f64)
             }
             Initial::List => {
@@ -373,11 +372,17 @@ impl LagrangianSettings {
                 format!("the box holds {mobile:.3e} particles, more than {MAX_PARTICLES:e}: shrink length, width or the bed"),
             ));
         }
-        if self.fluid != FluidMode::Off && self.bottom != Bottom::Periodic && c.bed_height + c.water_depth <= 0.0 {
+        // a column thinner than a grain resolves nothing, and one of 1e-308 m has cells
+        // that underflow: its momentum system is singular at the first fluid update
+        if self.fluid != FluidMode::Off && self.bottom != Bottom::Periodic && c.bed_height + c.water_depth < c.d {
             return Err(key_error(
                 f,
                 "domain.water_depth",
-                "the fluid column height bed_height + water_depth must be > 0",
+                format!(
+                    "the fluid column height bed_height + water_depth = {} m must be at least one grain diameter ({} m)",
+                    crate::param::number(c.bed_height + c.water_depth),
+                    crate::param::number(c.d)
+                ),
             ));
         }
         Ok(())

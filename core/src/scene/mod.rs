@@ -27,12 +27,12 @@ use crate::needs::{Field, Needs};
 use crate::param::ParamRange;
 
 pub use closures::{closure_from_value, de_concrete, Closures, DEFAULT_MODELS};
-pub use domain::{Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT};
+pub use domain::{Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT, MAX_STRETCH_DECADES};
 pub use lagrangian::{Case, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, MAX_PARTICLES, MAX_SIDE_DIAMETERS};
 pub use overrides::{apply_override, parse_table};
 pub use solver::{
-    Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver, SolverKind, Surface,
-    MAX_TIME,
+    default_elastic_phi_rlp, Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver,
+    SolverKind, Surface, ELASTIC_PHI_RLP, MAX_TIME,
 };
 pub use tables::{
     Contact, ContactModel, Fluid, Meta, Output, Particles, Physics, Reference, MAX_SNAPSHOTS, MAX_TIMESERIES_ROWS,
@@ -260,6 +260,9 @@ impl Scene {
         }
         let (end_time, _) = self.end_time();
         self.output.resolve(end_time);
+        if self.solver.eulerian.elastic_phi_rlp.is_none() {
+            self.solver.eulerian.elastic_phi_rlp = self.closures.max_packing().map(solver::default_elastic_phi_rlp);
+        }
         let dir = self.path.parent().map(Path::to_path_buf).unwrap_or_default();
         for r in &mut self.reference {
             r.file = absolute(&dir, &r.file);
@@ -296,6 +299,21 @@ impl Scene {
                     )
                 })?;
                 check(f, "domain.cells", cells as f64, ParamRange::closed(4.0, MAX_CELLS as f64))?;
+                // the widths of a stretched grid span r^(cells - 1): past four decades the
+                // phi step of a dense bed goes unstable (case 1 at r = 1.2 runs with 60 cells,
+                // a span of 4.7e4, and stops at 66, 1.4e5; r = 1.1 runs at 100 cells, stops
+                // at 200), and 1.2 over 400 cells makes a first cell of 4e-34 m
+                let r = self.domain.stretching;
+                if r > 1.0 && (cells - 1) as f64 * r.log10() > MAX_STRETCH_DECADES {
+                    let most = 1 + (MAX_STRETCH_DECADES / r.log10()).floor() as usize;
+                    return Err(key(
+                        "domain.stretching",
+                        format!(
+                            "{r} over {cells} cells makes the largest cell {} times the first; at most 1e{MAX_STRETCH_DECADES} is allowed, so at most {most} cells at this ratio (or a ratio closer to 1)",
+                            crate::param::number(r.powi(cells as i32 - 1))
+                        ),
+                    ));
+                }
                 let phi_max = self.closures.max_packing().ok_or_else(|| {
                     key(
                         "closures.granular",
@@ -311,18 +329,19 @@ impl Scene {
                         return Err(Error::OutOfRange {
                             file: f.into(),
                             key: k.into(),
-                            value: v.to_string(),
+                            value: crate::param::number(v),
                             allowed: why,
                         });
                     }
                 }
-                let rlp = self.solver.eulerian.elastic_phi_rlp;
+                let rlp =
+                    self.solver.eulerian.elastic_phi_rlp.unwrap_or_else(|| solver::default_elastic_phi_rlp(phi_max));
                 let local = self.closures.granular.as_deref().and_then(|g| g.as_local()).is_some();
                 if local && rlp >= phi_max {
                     return Err(Error::OutOfRange {
                         file: f.into(),
                         key: "solver.eulerian.elastic_phi_rlp".into(),
-                        value: rlp.to_string(),
+                        value: crate::param::number(rlp),
                         allowed: format!("< {phi_max} (the closure's packing at zero shear)"),
                     });
                 }

@@ -75,8 +75,10 @@ pub struct EulerianSettings {
     /// elastic (enduring-contact) pressure P0 of Johnson & Jackson for local rheologies
     /// (Pa); kinetic closures carry their own
     pub elastic_p0: f64,
-    /// random loose packing where the elastic pressure of local rheologies starts
-    pub elastic_phi_rlp: f64,
+    /// random loose packing where the elastic pressure of local rheologies starts; default
+    /// [`default_elastic_phi_rlp`] of the granular closure's packing
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub elastic_phi_rlp: Option<f64>,
     /// initial granular temperature (m^2/s^2) in the bed, a seed for the kinetic equation
     pub initial_temperature: f64,
 }
@@ -95,7 +97,7 @@ impl Default for EulerianSettings {
             shear_rate_regularisation: 1e-4,
             eddy_relaxation: 0.5,
             elastic_p0: 0.05,
-            elastic_phi_rlp: 0.57,
+            elastic_phi_rlp: None,
             initial_temperature: 1e-6,
         }
     }
@@ -119,9 +121,23 @@ impl EulerianSettings {
         check(f, &p("shear_rate_regularisation"), self.shear_rate_regularisation, ParamRange::open_closed(0.0, 1e6))?;
         check(f, &p("eddy_relaxation"), self.eddy_relaxation, ParamRange::open_closed(0.0, 1.0))?;
         check(f, &p("elastic_p0"), self.elastic_p0, ParamRange::open_closed(0.0, 1e9))?;
-        check(f, &p("elastic_phi_rlp"), self.elastic_phi_rlp, ParamRange::open(0.0, 1.0))?;
+        if let Some(rlp) = self.elastic_phi_rlp {
+            check(f, &p("elastic_phi_rlp"), rlp, ParamRange::open(0.0, 1.0))?;
+        }
         check(f, &p("initial_temperature"), self.initial_temperature, ParamRange::open_closed(0.0, 1e6))
     }
+}
+
+/// Random loose packing of the elastic pressure of the local rheologies, reference value
+/// (Chauchat 2018 with phi_c = 0.61).
+pub const ELASTIC_PHI_RLP: f64 = 0.57;
+
+/// Default `solver.eulerian.elastic_phi_rlp` for a granular closure of packing `phi_max`
+/// at zero shear: 0.57, or the same fraction 0.57 / 0.61 of the packing when the packing
+/// is below 0.61, so that the default stays below the packing (0.57 is refused for any
+/// phi_c <= 0.57) and is unchanged for the usual phi_c >= 0.61.
+pub fn default_elastic_phi_rlp(phi_max: f64) -> f64 {
+    ELASTIC_PHI_RLP.min(phi_max * ELASTIC_PHI_RLP / 0.61)
 }
 
 /// An [`Error::Key`] at `key` of `file`.

@@ -256,7 +256,10 @@ impl Eulerian<'_> {
             };
             let ux = self.s.uf[i] - self.s.up[i];
             let slip = sc.work[i];
-            co.drag_tangent[i] = 1.0 + if slip > 0.0 { slope * ux * ux / (slip * slip) } else { 0.0 };
+            // the ratio before the square: ux^2 and slip^2 underflow to 0 (0/0) for a slip
+            // below 1e-154 m/s, as the first implicit step of a lid-driven column leaves
+            // deep under a fine grid (Couette at 133 cells and more)
+            co.drag_tangent[i] = 1.0 + if slip > 0.0 { slope * (ux / slip).powi(2) } else { 0.0 };
             co.beta[i] = phi * cc;
             co.k_drag[i] = cc / eps;
             co.mobility[i] = eps * eps / cc;

@@ -1,13 +1,12 @@
 //! Profiles, summary and paragraph of an Eulerian run, read from the state and the
 //! coefficients the stepper keeps current: nothing here advances or evaluates anything.
 //!
-//! Every number written is finite. `phi` is written clamped at 0 (the phi step accepts
-//! round-off negatives down to -1e-9, which are not volume fractions). The control number
-//! (`inertial_number` of kinetic theory and mu(I), `control_number` of mu(K)) is
-//! undefined where the grains carry no pressure (I = d gamma_dot / sqrt(p / rho_p) is
-//! infinite at p = 0, a sheared cell without grains in contact or collision); such cells
-//! are written as 0, which therefore means "no granular pressure", and the profile is to be
-//! read only where `p_p` > 0.
+//! Every number written is finite. `phi` is written clamped into [0, phi_max] (the phi
+//! step accepts round-off negatives down to -1e-9, which are not volume fractions). The
+//! control number (`inertial_number` of kinetic theory and mu(I), `control_number` of
+//! mu(K)) is undefined where the grains carry no pressure (I = d gamma_dot / sqrt(p /
+//! rho_p) is infinite at p = 0, a sheared cell without grains in contact or collision);
+//! such cells are NaN in the profiles and an empty cell in `profiles.csv`.
 
 use super::rheology::Rheology;
 use super::Eulerian;
@@ -26,7 +25,7 @@ pub struct Derived {
     pub p_p: Vec<f64>,
     /// particle wall-normal velocity (m/s)
     pub w_p: Vec<f64>,
-    /// inertial number I (kinetic and mu(I)) or K (mu(K)); 0 where the particle pressure
+    /// inertial number I (kinetic and mu(I)) or K (mu(K)); NaN where the particle pressure
     /// vanishes and the number is undefined (see the module documentation)
     pub control: Vec<f64>,
 }
@@ -51,7 +50,7 @@ impl Eulerian<'_> {
                 Rheology::Local { model, .. } => model.control_number(&self.local_state(co.gamma_p[i], p)),
                 Rheology::Kinetic { .. } => self.local_state(co.gamma_p[i], co.pres[i].p).inertial_number(),
             };
-            out.control.push(if x.is_finite() { x } else { 0.0 });
+            out.control.push(if x.is_finite() { x } else { f64::NAN });
         }
         out
     }
@@ -94,7 +93,8 @@ impl Eulerian<'_> {
     pub(super) fn run_report(&self, ending: &Ending, wall: f64) -> RunReport {
         let scene = self.scene;
         let derived = self.derived();
-        let phi: Vec<f64> = self.phi().iter().map(|p| p.max(0.0)).collect();
+        let phi_max = self.m.rheology.phi_max();
+        let phi: Vec<f64> = self.phi().iter().map(|p| p.clamp(0.0, phi_max)).collect();
         let mut p = Profiles::default();
         p.push("z", self.z().to_vec());
         p.push("phi", phi.clone());

@@ -95,7 +95,14 @@ impl<'a> Eulerian<'a> {
             let phi_max = l.packing(0.0);
             Rheology::Local {
                 model: l,
-                elastic: Elastic { p0: cfg.settings.elastic_p0, phi_rlp: cfg.settings.elastic_phi_rlp, phi_max },
+                elastic: Elastic {
+                    p0: cfg.settings.elastic_p0,
+                    phi_rlp: cfg
+                        .settings
+                        .elastic_phi_rlp
+                        .unwrap_or_else(|| saltus_core::scene::default_elastic_phi_rlp(phi_max)),
+                    phi_max,
+                },
             }
         } else {
             return Err(Error::Invalid(format!(

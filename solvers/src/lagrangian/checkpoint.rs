@@ -43,7 +43,7 @@ struct Saving<'s> {
     steady: &'s Steady,
     cell_volume: f64,
     bed_surface: f64,
-    vtk_count: usize,
+    vtk: &'s Option<super::vtk::Series>,
     next_vtk: f64,
     flow_wall: f64,
 }
@@ -65,7 +65,7 @@ struct Saved {
     steady: Steady,
     cell_volume: f64,
     bed_surface: f64,
-    vtk_count: usize,
+    vtk: Option<super::vtk::Series>,
     next_vtk: f64,
     flow_wall: f64,
 }
@@ -92,7 +92,7 @@ impl Lagrangian<'_> {
             steady: &self.steady,
             cell_volume: self.cell_volume,
             bed_surface: self.bed_surface,
-            vtk_count: self.vtk_count,
+            vtk: &self.vtk,
             next_vtk: self.next_vtk,
             flow_wall: self.flow_wall,
         };
@@ -144,7 +144,7 @@ impl Lagrangian<'_> {
         self.steady = s.steady;
         self.cell_volume = s.cell_volume;
         self.bed_surface = s.bed_surface;
-        self.vtk_count = s.vtk_count;
+        self.vtk = s.vtk;
         self.next_vtk = s.next_vtk;
         self.flow_wall_before = s.flow_wall;
         self.flow_wall = s.flow_wall;

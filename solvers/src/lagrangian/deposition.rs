@@ -87,10 +87,19 @@ impl Lagrangian<'_> {
         let n = self.sums.vol.len();
         self.sums.accumulate(&self.dem.p, self.field.base, dz, &self.forces.k, &self.forces.urx);
         let w = ((d / dz).round() as usize).max(1);
+        // running sums: a window of w cells per cell would cost cells * d / dz, 1e11
+        // operations for a million cells
+        let mut prefix = Vec::with_capacity(n + 1);
+        prefix.push(0.0);
+        let mut acc = 0.0;
+        for &v in &self.sums.vol {
+            acc += v;
+            prefix.push(acc);
+        }
         let mean: Vec<f64> = (0..n)
             .map(|c| {
                 let (lo, hi) = (c.saturating_sub(w / 2), (c + w / 2 + 1).min(n));
-                self.sums.vol[lo..hi].iter().sum::<f64>() / ((hi - lo) as f64 * self.cell_volume)
+                (prefix[hi] - prefix[lo]) / ((hi - lo) as f64 * self.cell_volume)
             })
             .collect();
         let best = mean.iter().fold(0.0f64, |a, &m| a.max(m));

@@ -58,6 +58,11 @@ pub struct NeighbourList {
     fill: Vec<usize>,
 }
 
+/// Most cells of the neighbour grid per particle (see [`NeighbourList::build`]).
+pub const MAX_CELLS_PER_PARTICLE: usize = 8;
+/// Cells the neighbour grid may always have, whatever the particle count.
+pub const MIN_CELL_CAP: usize = 1 << 16;
+
 /// Cell-list geometry along one axis.
 #[derive(Clone, Copy, Debug)]
 struct Axis {
@@ -171,6 +176,26 @@ impl NeighbourList {
                 // the next check of the state) must not wrap the count to zero cells
                 let m = ((hi - lo) / cut).floor().clamp(0.0, ((1 << 20) - 1) as f64) as usize + 1;
                 axes[axis] = Axis { lo, size: cut, n: m, periodic: false };
+            }
+        }
+        // bound the grid by the particle count: a box much larger than its particles (a
+        // few grains in a tall or wide box, one grain flung far away) would otherwise ask
+        // for cells by the billion. Coarser cells list the same pairs (a cell only has to
+        // be at least the cut-off), so this costs speed in such boxes, never correctness;
+        // the bound is far above the cells of a bed (about one per particle), whose grid
+        // (and with it the pair order) it leaves unchanged.
+        let cap = (MAX_CELLS_PER_PARTICLE * n).max(MIN_CELL_CAP);
+        while axes.iter().map(|a| a.n).product::<usize>() > cap {
+            let Some(a) = axes.iter_mut().max_by_key(|a| a.n) else { break };
+            if a.periodic {
+                let l = a.size * a.n as f64;
+                a.n = a.n.div_ceil(2);
+                a.size = l / a.n as f64;
+            } else {
+                // n cells of `size` cover the particles' span; half as many of twice the size
+                // still do
+                a.size *= 2.0;
+                a.n = a.n.div_ceil(2);
             }
         }
         let ncell = axes[0].n * axes[1].n * axes[2].n;
@@ -328,6 +353,20 @@ mod tests {
             }
             prop_assert!(seen.iter().all(|&c| c == 1));
         }
+    }
+
+    #[test]
+    fn the_grid_is_bounded_by_the_particles() {
+        // two grains far apart in a wide box: the full grid would hold 1e17 cells
+        let bx = Box3 { length: [60.0, 60.0, 0.0], periodic: [true, true, false] };
+        let mut p = Particles::default();
+        p.push([1.0, 1.0, 0.01], [0.0; 3], [0.0; 3], 3e-3, 2500.0, false);
+        p.push([1.0, 1.0, 1e6], [0.0; 3], [0.0; 3], 3e-3, 2500.0, false);
+        p.push([1.004, 1.0, 1e6 + 0.004], [0.0; 3], [0.0; 3], 3e-3, 2500.0, false);
+        let mut list = NeighbourList::new(6e-4);
+        list.build(&mut p, &bx);
+        assert!(list.cell_start.len() <= MIN_CELL_CAP + 1);
+        assert_eq!((list.len(), list.i[0], list.j[0]), (1, 1, 2));
     }
 
     #[test]

@@ -98,7 +98,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
             }
         ),
     };
-    let text = format!(
+    let mut text = format!(
         "{}: {} after {:.3} s of flow ({} DEM steps of {:.3e} s after {} of deposition, {} neighbour-list builds, {} mobile particles, {samples} samples) in {:.1} s wall time ({:.2e} particle-steps/s); {measured}",
         scene.meta.name,
         ending.name(),
@@ -111,5 +111,9 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         wall,
         throughput.unwrap_or(0.0),
     );
+    if let Some(e) = m.vtk_error() {
+        text.push_str("; ");
+        text.push_str(e);
+    }
     RunReport { profiles: p, summary, text }
 }

@@ -3,7 +3,7 @@
 //! driver's view of the run in [`super::stepper`].
 
 use std::borrow::Cow;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
 use saltus_core::scene::Scene;
@@ -25,6 +25,10 @@ use crate::run::{Breakdown, Ending, Place};
 /// bedload or settling velocity, reached only when the time step is too large for the
 /// stiffness.
 pub const MAX_SPEED: f64 = 100.0;
+
+/// Most DEM steps a scene may ask for (deposition and flow): the top of the range of
+/// `solver.lagrangian.max_steps`.
+pub const MAX_DEM_STEPS: f64 = 1e15;
 
 /// DEM steps between two checks of the state (and two returns to the driver) when the
 /// fluid period is longer: the state is checked at every fluid update and at least this
@@ -77,8 +81,11 @@ pub struct Lagrangian<'a> {
     pub(super) mat: Material,
     rho_f: f64,
     pub(super) bed_surface: f64,
-    vtk_dir: Option<PathBuf>,
-    pub(super) vtk_count: usize,
+    /// the ParaView snapshot series, when `solver.lagrangian.vtk_period` > 0 and the
+    /// driver gave a folder
+    pub(super) vtk: Option<super::vtk::Series>,
+    /// why the first snapshot that failed was not written
+    vtk_error: Option<String>,
     pub(super) next_vtk: f64,
     pub(super) seed: u64,
     pub(super) zero_faces: Vec<f64>,
@@ -171,6 +178,28 @@ impl<'a> Lagrangian<'a> {
         } else {
             None
         };
+        // the steps the scene asks, known before the first: a time step that underflows
+        // (dt_safety or a stiffness at the end of their ranges) would otherwise make the
+        // deposition and the flow crawl for ever
+        let asked = (s.settle_time + s.numerics.end_time) / dt;
+        if dt.is_nan() || dt <= 0.0 || asked.is_nan() || asked > MAX_DEM_STEPS {
+            let stiffness = match s.contact {
+                ContactModel::Linear => "particles.contact.stiffness",
+                ContactModel::Hertz => "particles.contact.young",
+            };
+            return Err(Error::Key {
+                file: scene.path.clone(),
+                key: "solver.lagrangian.dt_safety".into(),
+                message: format!(
+                    "{} with {stiffness} gives a DEM time step of {} s, and solver.lagrangian.settle_time + end_time = {} s then takes {} steps, more than {}; raise dt_safety, soften the contact or shorten the run",
+                    saltus_core::param::number(s.numerics.dt_safety),
+                    saltus_core::param::number(dt),
+                    saltus_core::param::number(s.settle_time + s.numerics.end_time),
+                    saltus_core::param::number(asked),
+                    saltus_core::param::number(MAX_DEM_STEPS),
+                ),
+            });
+        }
         let fluid_every = ((s.numerics.fluid_period / dt).round() as u64).max(1);
         let pool = super::stepper::pool(s.numerics.threads, &scene.path)?;
         let deposit = cfg.settings.numerics.initial == Initial::Bed;
@@ -214,8 +243,8 @@ impl<'a> Lagrangian<'a> {
             mat,
             rho_f: scene.fluid.density,
             bed_surface: cfg.bed_surface(),
-            vtk_dir: None,
-            vtk_count: 0,
+            vtk: None,
+            vtk_error: None,
             next_vtk: 0.0,
             seed: scene.seed,
             zero_faces: vec![0.0; cells + 1],
@@ -226,11 +255,26 @@ impl<'a> Lagrangian<'a> {
         })
     }
 
-    /// Write VTK particle snapshots into `dir` every `solver.lagrangian.vtk_period` (if > 0).
+    /// Write ParaView snapshots ([`super::vtk`]) into `dir` every
+    /// `solver.lagrangian.vtk_period` of flow time (if > 0).
     pub fn set_vtk_dir(&mut self, dir: &Path) {
         if self.cfg.settings.numerics.vtk_period > 0.0 {
-            self.vtk_dir = Some(dir.to_path_buf());
+            // a restored run goes on with the snapshots its checkpoint lists
+            self.vtk = Some(match self.vtk.take() {
+                Some(series) => series.moved_to(dir),
+                None => super::vtk::Series::new(dir),
+            });
         }
+    }
+
+    /// The snapshot series, when snapshots are written.
+    pub fn vtk_series(&self) -> Option<&super::vtk::Series> {
+        self.vtk.as_ref()
+    }
+
+    /// Why a snapshot was not written (the first failure), if one was not.
+    pub fn vtk_error(&self) -> Option<&str> {
+        self.vtk_error.as_deref()
     }
 
     /// The scene.
@@ -379,14 +423,33 @@ impl<'a> Lagrangian<'a> {
                     place: Place::Particle { index: a },
                     field: Cow::Borrowed("|v|"),
                     value: s2.sqrt(),
-                    reason: format!(
-                        "speed above {MAX_SPEED} m/s at z = {:.6} m: the time step is too large for the contact stiffness (lower solver.lagrangian.dt_safety) or the driving too strong",
-                        p.z[a]
-                    ),
+                    reason: self.speed_cause(p.z[a]),
                 });
             }
         }
         Ok(())
+    }
+
+    /// Why a particle at height z outran [`MAX_SPEED`]: carried there by the fluid (a
+    /// fluid period too long for the explicit coupling, or a driving too strong), or
+    /// thrown by the contacts (a time step too large for their stiffness).
+    fn speed_cause(&self, z: f64) -> String {
+        let u = self.field.velocity(z);
+        let at = format!("speed above {MAX_SPEED} m/s at z = {} m", saltus_core::param::decimal(z));
+        if u.abs() > 0.5 * MAX_SPEED {
+            format!(
+                "{at}, where the fluid moves at {} m/s: the driving is too strong or solver.lagrangian.fluid_period = {} s too long for the coupling",
+                saltus_core::param::number(u),
+                saltus_core::param::number(self.cfg.settings.numerics.fluid_period)
+            )
+        } else {
+            format!(
+                "{at}, the fluid there at {} m/s: the contacts threw it, the time step {} s is too large for the contact stiffness (lower solver.lagrangian.dt_safety = {})",
+                saltus_core::param::number(u),
+                saltus_core::param::number(self.dem.dt()),
+                saltus_core::param::number(self.cfg.settings.numerics.dt_safety)
+            )
+        }
     }
 
     /// One fluid update: averages, column solve, field refresh, statistics.
@@ -403,6 +466,21 @@ impl<'a> Lagrangian<'a> {
                     field: Cow::Borrowed("u_f"),
                     value: f64::NAN,
                     reason: e.to_string(),
+                });
+            }
+            // a runaway column (a fluid period far beyond the particles' response time
+            // leaves the drag no hold on it) is stopped here with its cause, before the
+            // particles it would fling blow up
+            if let Some((c, &u)) = col.velocity().iter().enumerate().find(|(_, u)| u.is_nan() || u.abs() > MAX_SPEED) {
+                return Err(Breakdown {
+                    time: self.time,
+                    place: Place::Cell { index: c, z: col.grid().centres()[c] },
+                    field: Cow::Borrowed("u_f"),
+                    value: u,
+                    reason: format!(
+                        "fluid velocity above {MAX_SPEED} m/s: the driving is too strong or solver.lagrangian.fluid_period = {} s too long for the coupling",
+                        saltus_core::param::number(tau_f)
+                    ),
                 });
             }
             self.field.u.copy_from_slice(col.velocity());
@@ -455,7 +533,7 @@ impl<'a> Lagrangian<'a> {
         if update {
             let r = if fluid == FluidMode::Off { self.check() } else { self.fluid_update() };
             r.map_err(Ending::Unstable)?;
-            if self.vtk_dir.is_some() && self.time >= self.next_vtk {
+            if self.vtk.is_some() && self.time >= self.next_vtk {
                 self.write_vtk();
                 self.next_vtk += self.cfg.settings.numerics.vtk_period;
             }
@@ -485,11 +563,13 @@ impl<'a> Lagrangian<'a> {
     }
 
     fn write_vtk(&mut self) {
-        if let Some(dir) = &self.vtk_dir {
-            let f = dir.join(format!("particles_{:05}.vtk", self.vtk_count));
-            // a failed snapshot does not stop the run; the summary still tells the result
-            let _ = std::fs::create_dir_all(dir).and_then(|_| std::fs::write(&f, super::vtk::legacy(&self.dem.p)));
-            self.vtk_count += 1;
+        let column = (self.cfg.settings.numerics.fluid != FluidMode::Off).then_some(&self.field);
+        if let Some(series) = self.vtk.as_mut() {
+            // a failed snapshot does not stop the run (the report tells it); the summary
+            // still tells the result
+            if let Err(e) = series.write(self.time, &self.dem.p, column) {
+                self.vtk_error.get_or_insert_with(|| e.to_string());
+            }
         }
     }
 

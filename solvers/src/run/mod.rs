@@ -17,6 +17,7 @@ use std::fmt;
 use std::path::Path;
 use std::time::Instant;
 
+use saltus_core::param::{decimal, number};
 use serde::{Deserialize, Serialize};
 
 use crate::output::Profiles;
@@ -47,7 +48,7 @@ pub enum Place {
 impl fmt::Display for Place {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Place::Cell { index, z } => write!(f, "cell {index} (z = {z:.6} m)"),
+            Place::Cell { index, z } => write!(f, "cell {index} (z = {} m)", decimal(*z)),
             Place::Particle { index } => write!(f, "particle {index}"),
             Place::Column => f.write_str("the column"),
         }
@@ -71,7 +72,15 @@ pub struct Breakdown {
 
 impl fmt::Display for Breakdown {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "t = {:.6} s: {} = {:e} in {}: {}", self.time, self.field, self.value, self.place, self.reason)
+        write!(
+            f,
+            "t = {} s: {} = {} in {}: {}",
+            decimal(self.time),
+            self.field,
+            number(self.value),
+            self.place,
+            self.reason
+        )
     }
 }
 
