@@ -218,13 +218,13 @@ fn main() {
                     *counts.entry("long run (a step cap mutated)").or_default() += 1;
                 } else if r.timed_out {
                     report!("hang", format!("run past {} s", timeout.as_secs_f64()));
-                } else if r.stderr.contains("panicked") || !matches!(r.code, Some(0) | Some(1) | Some(2)) {
+                } else if r.stderr.contains("panicked") || !matches!(r.code, Some(0) | Some(2) | Some(3)) {
                     let first = r.stderr.lines().find(|l| !l.trim().is_empty()).unwrap_or("");
                     report!("crash", format!("run exit {:?}: {first}", r.code));
                 } else if r.code == Some(2) {
                     report!("disagreement", format!("check accepts, run refuses: {}", r.stderr.trim()));
                 } else {
-                    *counts.entry(if r.code == Some(0) { "run ok" } else { "run unstable (exit 1)" }).or_default() += 1;
+                    *counts.entry(if r.code == Some(0) { "run ok" } else { "run unstable (exit 3)" }).or_default() += 1;
                     if let Some(w) = non_finite(&dir) {
                         report!("non-finite output", w);
                     }

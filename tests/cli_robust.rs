@@ -1,6 +1,6 @@
 //! Regression tests of the fuzz findings of issue 14 item 5: each minimal scene, run
 //! through the built program, fails cleanly (exit 2 naming the key), stops as unstable
-//! with its cause (exit 1), or runs, and never panics, aborts or writes a non-finite
+//! with its cause (exit 3), or runs, and never panics, aborts or writes a non-finite
 //! number. Plus the ParaView series of a small DEM run, read back.
 
 mod common;
@@ -116,7 +116,7 @@ fn a_fluid_period_beyond_the_run_stops_on_the_runaway_column_naming_it() {
     // was: index out of bounds in drag.rs
     let (o, out) = run_with("robust_fluid_period", BED, &["solver.lagrangian.fluid_period=1e6"]);
     let err = stderr(&o);
-    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(o.status.code(), Some(3), "{err}");
     assert!(err.contains("u_f") && err.contains("solver.lagrangian.fluid_period = 1e6 s"), "{err}");
     assert!(!err.contains("panicked"));
     finite_outputs(&out);
@@ -244,7 +244,7 @@ fn an_eulerian_run_writes_no_non_finite_number() {
             "--set",
             "solver.eulerian.end_time=0.2",
         ]);
-        assert!(o.status.code() == Some(0) || o.status.code() == Some(1), "{}", stderr(&o));
+        assert!(o.status.code() == Some(0) || o.status.code() == Some(3), "{}", stderr(&o));
         finite_outputs(&out);
         let (header, rows) = read_table(&out.join("profiles.csv"));
         for r in &rows {
