@@ -1,10 +1,11 @@
 //! `saltus models`: every registered model per family with its equation, source,
-//! parameters, defaults and valid ranges.
+//! parameters, defaults and valid ranges, and its string options with their allowed values.
 
 use std::fmt::Write;
 
 use saltus_core::closure::Family;
 use saltus_core::registry;
+use saltus_core::Choice;
 
 /// Text listing of the models of `family` (all families when `None`).
 pub fn text(family: Option<Family>) -> String {
@@ -17,7 +18,8 @@ pub fn text(family: Option<Family>) -> String {
             let _ = writeln!(s, "      equation: {}", d.equation());
             let _ = writeln!(s, "      source:   {}", d.source());
             let params = d.params();
-            if params.is_empty() {
+            let choices = d.choices();
+            if params.is_empty() && choices.is_empty() {
                 let _ = writeln!(s, "      parameters: none");
             }
             for p in params {
@@ -31,6 +33,9 @@ pub fn text(family: Option<Family>) -> String {
                     p.doc
                 );
             }
+            for c in choices {
+                let _ = writeln!(s, "{}", choice_line(&c));
+            }
             if let Ok(t) = (m.default_toml)() {
                 let inline = t.lines().filter(|l| !l.trim().is_empty()).collect::<Vec<_>>().join("; ");
                 let _ = writeln!(s, "      toml:     {inline}");
@@ -39,6 +44,12 @@ pub fn text(family: Option<Family>) -> String {
         s.push('\n');
     }
     s
+}
+
+/// The text line of a string option or switch: its allowed values in braces where a real
+/// parameter shows its range.
+pub fn choice_line(c: &Choice) -> String {
+    format!("      {:<22} default {:<10} one of {{{}}} {}", c.name, c.value, c.allowed.join(", "), c.doc)
 }
 
 /// JSON listing (for tools).
@@ -59,9 +70,14 @@ pub fn json(family: Option<Family>) -> serde_json::Value {
                 })
             })
             .collect();
+        let options: Vec<_> = d
+            .choices()
+            .into_iter()
+            .map(|c| serde_json::json!({"name": c.name, "default": c.value, "allowed": c.allowed, "doc": c.doc}))
+            .collect();
         out.push(serde_json::json!({
             "family": m.family.key(), "name": m.name, "equation": d.equation(),
-            "source": d.source(), "parameters": params
+            "source": d.source(), "parameters": params, "options": options
         }));
     }
     serde_json::Value::Array(out)

@@ -37,9 +37,9 @@ pub use closure::Family;
 pub use error::{Error, Result};
 pub use needs::{Field, Needs};
 pub use param::{Bound, Choice, Describe, DescribeField, Limit, Param, ParamError, ParamRange, ParamSet};
+pub use registry::ModelEntry;
 /// `#[derive(Describe)]` and `#[derive(Params)]`: see [`saltus_derive`].
 pub use saltus_derive::{Describe, Params};
-pub use registry::ModelEntry;
 
 /// Re-exported so that `register_model!` works from crates that do not depend on inventory.
 pub use inventory;

@@ -190,7 +190,12 @@ pub trait DescribeField {
 
 impl DescribeField for bool {
     fn describe_field(&self, prefix: &str, doc: &'static str, out: &mut ParamSet) {
-        out.choices.push(Choice { name: prefix.to_string(), value: self.to_string(), allowed: vec!["true", "false"], doc });
+        out.choices.push(Choice {
+            name: prefix.to_string(),
+            value: self.to_string(),
+            allowed: vec!["true", "false"],
+            doc,
+        });
     }
 }
 

@@ -138,9 +138,9 @@ fn field_attrs(attrs: &[syn::Attribute]) -> syn::Result<FieldAttrs> {
             } else if meta.path.is_ident("skip") {
                 a.skip = true;
             } else {
-                return Err(meta.error(
-                    "expected one of range, unit, description, value, less_than, greater_than, skip",
-                ));
+                return Err(
+                    meta.error("expected one of range, unit, description, value, less_than, greater_than, skip")
+                );
             }
             Ok(())
         })?;
@@ -214,7 +214,10 @@ fn rename_variant(name: &str, rule: Option<&str>, span: Span) -> syn::Result<Str
         Some("lowercase") => name.to_lowercase(),
         Some("UPPERCASE") => name.to_uppercase(),
         Some(other) => {
-            return Err(syn::Error::new(span, format!("serde rename_all = \"{other}\" is not supported by this derive")))
+            return Err(syn::Error::new(
+                span,
+                format!("serde rename_all = \"{other}\" is not supported by this derive"),
+            ))
         }
     })
 }
@@ -311,9 +314,8 @@ fn expand(input: &DeriveInput, model: bool) -> syn::Result<TokenStream2> {
     }
 
     let need = |v: &Option<Expr>, what: &str| {
-        v.clone().ok_or_else(|| {
-            syn::Error::new_spanned(&input.ident, format!("#[describe({what} = \"...\")] is required"))
-        })
+        v.clone()
+            .ok_or_else(|| syn::Error::new_spanned(&input.ident, format!("#[describe({what} = \"...\")] is required")))
     };
     let name = attrs.name.clone().ok_or_else(|| {
         syn::Error::new_spanned(&input.ident, "#[describe(name = \"...\")] is required: the registered model name")
@@ -369,7 +371,8 @@ fn struct_body(fields: &Fields, krate: &TokenStream2) -> syn::Result<(TokenStrea
             continue;
         }
         let ident = f.ident.as_ref().ok_or_else(|| syn::Error::new_spanned(f, "unnamed field"))?;
-        let key = serde_attrs(&f.attrs)?.rename.unwrap_or_else(|| ident.to_string().trim_start_matches("r#").to_string());
+        let key =
+            serde_attrs(&f.attrs)?.rename.unwrap_or_else(|| ident.to_string().trim_start_matches("r#").to_string());
         let doc = match (&a.description, doc_comment(&f.attrs)) {
             (Some(d), _) => d.value(),
             (None, Some(d)) => d,
