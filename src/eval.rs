@@ -116,22 +116,25 @@ impl EvalFamily {
 /// Parse a model given on the command line: either `key = value` lines or an inline table
 /// `{ type = "...", ... }`.
 pub fn parse_model(text: &str, family: EvalFamily) -> anyhow::Result<toml::Value> {
-    let trimmed = text.trim();
-    let doc = if trimmed.starts_with('{') { format!("model = {trimmed}") } else { String::new() };
-    let mut table: toml::Table = if doc.is_empty() {
-        trimmed.parse().map_err(|e: toml::de::Error| anyhow!("--model: TOML syntax error: {}", e.message()))?
-    } else {
-        let mut t: toml::Table =
-            doc.parse().map_err(|e: toml::de::Error| anyhow!("--model: TOML syntax error: {}", e.message()))?;
-        match t.remove("model") {
-            Some(toml::Value::Table(inner)) => inner,
-            _ => bail!("--model: expected a table"),
-        }
-    };
+    let mut table = parse_table(text)?;
     if family == EvalFamily::KineticTheory && !table.contains_key("type") {
         table.insert("type".into(), toml::Value::String("frictional_collisional".into()));
     }
     Ok(toml::Value::Table(table))
+}
+
+/// The TOML table of `--model`: `key = value` lines or an inline table `{ ... }`.
+pub fn parse_table(text: &str) -> anyhow::Result<toml::Table> {
+    let trimmed = text.trim();
+    let syntax = |e: toml::de::Error| anyhow!("--model: TOML syntax error: {}", e.message());
+    if !trimmed.starts_with('{') {
+        return trimmed.parse().map_err(syntax);
+    }
+    let mut t: toml::Table = format!("model = {trimmed}").parse().map_err(syntax)?;
+    match t.remove("model") {
+        Some(toml::Value::Table(inner)) => Ok(inner),
+        _ => bail!("--model: expected a table"),
+    }
 }
 
 fn need<'a>(t: &'a Table, name: &str, family: EvalFamily, origin: &str) -> anyhow::Result<&'a [f64]> {

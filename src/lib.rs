@@ -12,6 +12,7 @@ macro_rules! errln {
     }};
 }
 
+pub mod check;
 pub mod compare;
 pub mod errors;
 pub mod eval;

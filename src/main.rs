@@ -94,6 +94,21 @@ enum ClosureCommand {
         #[arg(long, default_value_t = 0)]
         seed: u64,
     },
+    /// Run the generic property checks on one closure (ours or a linked user's): every
+    /// parameter documented, TOML round trip, finite output over the parameter and input
+    /// ranges, batch = scalar, the model's declared limits. Exit 0 when all pass, 1 when a
+    /// check fails, 2 on bad input.
+    Check {
+        /// closure family (drag, hindrance, viscosity, granular, turbulence, fluctuation)
+        #[arg(long)]
+        family: String,
+        /// the model's TOML table, e.g. 'type = "dallavalle"' or '{type = "richardson_zaki", exponent = 4.65}'
+        #[arg(long)]
+        model: String,
+        /// random cases per property check
+        #[arg(long, default_value_t = 256)]
+        cases: u32,
+    },
     /// Draw closure curves side by side (PNG + CSV) from a comparison file such as
     /// cases/closures/drag.toml.
     Plot {
@@ -135,6 +150,10 @@ fn main() -> ExitCode {
             saltus::errln!("error: {e:#}");
             // a run stopped early wrote its outputs and says how it stopped; anything
             // else is a failure before or around the work
+            // a closure check that ran and found a failing check: 1, as a test runner would
+            if e.downcast_ref::<saltus::check::ChecksFailed>().is_some() {
+                return ExitCode::from(1);
+            }
             ExitCode::from(e.downcast_ref::<saltus::runner::Stopped>().map_or(2, |s| s.code))
         }
     }
@@ -234,6 +253,15 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 match output {
                     Some(p) => result.write_csv_file(&p)?,
                     None => result.write_csv(std::io::stdout().lock())?,
+                }
+            }
+            ClosureCommand::Check { family, model, cases } => {
+                let family = parse_family(&family)?;
+                let model = saltus::check::parse_model(&model)?;
+                let report = saltus::check::check(family, model, saltus::check::Options { cases })?;
+                out!("{}", report.text());
+                if !report.passed() {
+                    return Err(saltus::check::ChecksFailed { failures: report.failures(), model: report.model }.into());
                 }
             }
             ClosureCommand::Plot { file, out } => {
