@@ -2,6 +2,10 @@
 //! on a CSV, closure comparison plots, the run driver and scene comparisons. No physics
 //! lives here: every number comes from a closure or a solver.
 
+// `src/main.rs` is also compiled inside this library (module `cli`) and names the library
+// `saltus::...` as a binary would
+extern crate self as saltus;
+
 /// `eprintln!` that never panics: a closed or full stderr (`2>/dev/full`, errors piped
 /// into `head`) loses the message, not the run's outputs or its exit code.
 #[macro_export]
@@ -13,6 +17,7 @@ macro_rules! errln {
 }
 
 pub mod check;
+pub mod cli;
 pub mod compare;
 pub mod errors;
 pub mod eval;
