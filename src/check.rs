@@ -424,9 +424,7 @@ fn show_inputs(family: Family, x: &[f64]) -> String {
 /// Run `prop` over parameters × `input`; a failure becomes the shrunk input and message.
 fn run_property<I: std::fmt::Debug + Clone>(
     name: &str,
-    space: &ParamSpace,
-    family: Family,
-    opts: Options,
+    (space, family, opts): (&ParamSpace, Family, Options),
     input: BoxedStrategy<I>,
     show: impl Fn(&I) -> String,
     prop: impl Fn(&Built, &I) -> Result<(), String>,
@@ -464,9 +462,7 @@ fn same(a: f64, b: f64) -> bool {
 fn round_trip(space: &ParamSpace, family: Family, opts: Options) -> Outcome {
     run_property(
         "toml round trip",
-        space,
-        family,
-        opts,
+        (space, family, opts),
         Just(()).boxed(),
         |_| String::new(),
         |m, _| {
@@ -612,9 +608,7 @@ fn finite(space: &ParamSpace, family: Family, opts: Options) -> Outcome {
     };
     run_property(
         "finite",
-        space,
-        family,
-        opts,
+        (space, family, opts),
         inputs(family),
         |x| show_inputs(family, x),
         |m, x| finite_at(m, x),
@@ -701,9 +695,7 @@ fn batch_at(m: &Built, xs: &[Vec<f64>]) -> Result<(), String> {
 fn batch(space: &ParamSpace, family: Family, opts: Options) -> Outcome {
     run_property(
         "batch = scalar",
-        space,
-        family,
-        opts,
+        (space, family, opts),
         vec(inputs(family), 1..12).boxed(),
         |xs| xs.iter().map(|x| format!("[{}]", show_inputs(family, x))).collect::<Vec<_>>().join(" "),
         |m, xs| batch_at(m, xs),
@@ -823,7 +815,7 @@ fn declared_limit(space: &ParamSpace, family: Family, index: usize, limit: Limit
                     Err(format!("{} at {} then {} at {}", number(a), number(x1), number(b), number(x2)))
                 }
             };
-            run_property(name, space, family, opts, pair, show, prop, format!("{what}: {} pairs", opts.cases))
+            run_property(name, (space, family, opts), pair, show, prop, format!("{what}: {} pairs", opts.cases))
         }
         _ => {
             let input: BoxedStrategy<Vec<f64>> =
@@ -846,7 +838,7 @@ fn declared_limit(space: &ParamSpace, family: Family, index: usize, limit: Limit
                 }
                 _ => Err("not applicable".into()),
             };
-            run_property(name, space, family, opts, input, show, prop, what)
+            run_property(name, (space, family, opts), input, show, prop, what)
         }
     }
 }
