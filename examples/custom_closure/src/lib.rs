@@ -19,7 +19,10 @@ use serde::{Deserialize, Serialize};
 ///   (doi:10.1016/j.powtec.2008.07.006). Not Cheng 1997 (J. Hydraul. Eng. 123(2),
 ///   149-152), which gives a settling-velocity formula, not this C_D.
 /// * Defaults: the paper's fit, `a = 0.27`, `b = 0.43`, `c = 0.47`, `k = 0.04`, `m = 0.38`.
-/// * Valid range: subcritical flow, 0 < Re_p <= 2e5 (the fit data; no drag crisis).
+/// * Valid range: subcritical flow, 0 < Re_p <= 2e5 (the fit data; no drag crisis);
+///   `b` in [0, 0.8], `k` in [0.01, 1] and `m` in [0.2, 1]: beyond them C_D reaches its
+///   Newton value `c` only far above Re_p = 1e12 (`saltus closure check` found both: with
+///   b = 0.99 or m = 4e-9 the declared limit C_D -> c does not show).
 ///   Tends to Stokes' 24/Re_p as Re_p -> 0 and to `c` as Re_p -> inf (C_D Re_p -> 24,
 ///   C_D^inf = 0.47); C_D(0.1) = 242.77, C_D(1000) = 0.47.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
@@ -35,16 +38,16 @@ pub struct Cheng2009 {
     #[param(range = "[0, 10]", unit = "-")]
     pub a: f64,
     /// exponent b of the viscous correction
-    #[param(range = "[0, 1)", unit = "-")]
+    #[param(range = "[0, 0.8]", unit = "-")]
     pub b: f64,
     /// drag coefficient at large Re_p (Newton regime)
     #[param(range = "[0, 2]", unit = "-")]
     pub c: f64,
     /// rate k of the approach to the Newton regime
-    #[param(range = "(0, 1]", unit = "-")]
+    #[param(range = "[0.01, 1]", unit = "-")]
     pub k: f64,
     /// power m of Re_p in the approach to the Newton regime
-    #[param(range = "(0, 1]", unit = "-")]
+    #[param(range = "[0.2, 1]", unit = "-")]
     pub m: f64,
 }
 
