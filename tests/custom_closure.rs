@@ -61,7 +61,7 @@ fn the_example_binary_lists_its_model_with_ours() {
 
 #[test]
 fn the_example_model_passes_closure_check() {
-    let o = custom(&["closure", "check", "--family", "drag", "--model", "type = \"cheng2009\"", ]);
+    let o = custom(&["closure", "check", "--family", "drag", "--model", "type = \"cheng2009\""]);
     let out = stdout(&o);
     assert_eq!(o.status.code(), Some(0), "{out}{}", stderr(&o));
     assert!(out.contains("limit stokes") && out.contains("all 6 checks passed"), "{out}");
