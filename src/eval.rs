@@ -153,19 +153,7 @@ pub fn parse_model(text: &str, family: EvalFamily) -> anyhow::Result<toml::Value
 
 /// [`parse_model`] of a text that messages name `label`.
 pub fn parse_model_from(text: &str, family: EvalFamily, label: &str) -> anyhow::Result<toml::Value> {
-    let trimmed = text.trim();
-    let doc = if trimmed.starts_with('{') { format!("model = {trimmed}") } else { String::new() };
-    let table: toml::Table = if doc.is_empty() {
-        trimmed.parse().map_err(|e: toml::de::Error| anyhow!("{label}: TOML syntax error: {}", e.message()))?
-    } else {
-        let mut t: toml::Table =
-            doc.parse().map_err(|e: toml::de::Error| anyhow!("{label}: TOML syntax error: {}", e.message()))?;
-        match t.remove("model") {
-            Some(toml::Value::Table(inner)) => inner,
-            _ => bail!("{label}: expected a table"),
-        }
-    };
-    Ok(model_table(table, family))
+    Ok(model_table(parse_table_from(text, label)?, family))
 }
 
 /// A model's table as the family reads it: a `kinetic_theory` table is a
@@ -383,6 +371,25 @@ impl Model {
             }
         }
         Ok(out)
+    }
+}
+
+/// The TOML table of `--model`: `key = value` lines or an inline table `{ ... }`.
+pub fn parse_table(text: &str) -> anyhow::Result<toml::Table> {
+    parse_table_from(text, "--model")
+}
+
+/// [`parse_table`] of a text that messages name `label`.
+pub fn parse_table_from(text: &str, label: &str) -> anyhow::Result<toml::Table> {
+    let trimmed = text.trim();
+    let syntax = |e: toml::de::Error| anyhow!("{label}: TOML syntax error: {}", e.message());
+    if !trimmed.starts_with('{') {
+        return trimmed.parse().map_err(syntax);
+    }
+    let mut t: toml::Table = format!("model = {trimmed}").parse().map_err(syntax)?;
+    match t.remove("model") {
+        Some(toml::Value::Table(inner)) => Ok(inner),
+        _ => bail!("{label}: expected a table"),
     }
 }
 

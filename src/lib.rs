@@ -5,6 +5,9 @@
 // Errors carry file, key and message for the user; they are built once per failed run,
 // never in a hot loop, so their size does not matter (as in saltus-solvers).
 #![allow(clippy::result_large_err)]
+// `src/main.rs` is also compiled inside this library (module `cli`) and names the library
+// `saltus::...` as a binary would
+extern crate self as saltus;
 
 /// `eprintln!` that never panics: a closed or full stderr (`2>/dev/full`, errors piped
 /// into `head`) loses the message, not the run's outputs or its exit code.
@@ -31,6 +34,8 @@ pub fn describe(e: &anyhow::Error) -> String {
     s
 }
 
+pub mod check;
+pub mod cli;
 pub mod compare;
 pub mod errors;
 pub mod eval;

@@ -1,11 +1,11 @@
 //! `saltus models`: every registered model per family with its equation, source,
-//! parameters, defaults and valid ranges.
+//! parameters, defaults and valid ranges, and its string options with their allowed values.
 
 use std::fmt::Write;
 
 use anyhow::Context;
 use saltus_core::closure::Family;
-use saltus_core::{registry, Describe};
+use saltus_core::{registry, Choice, Describe};
 
 /// The scene family named `name` (`drag`, `hindrance`, ...); the error lists the known ones.
 pub fn parse_family(name: &str) -> anyhow::Result<Family> {
@@ -28,7 +28,8 @@ pub fn text(family: Option<Family>) -> String {
             let _ = writeln!(s, "      equation: {}", d.equation());
             let _ = writeln!(s, "      source:   {}", d.source());
             let params = d.params();
-            if params.is_empty() {
+            let choices = d.choices();
+            if params.is_empty() && choices.is_empty() {
                 let _ = writeln!(s, "      parameters: none");
             }
             for p in params {
@@ -41,6 +42,9 @@ pub fn text(family: Option<Family>) -> String {
                     p.unit,
                     p.doc
                 );
+            }
+            for c in choices {
+                let _ = writeln!(s, "{}", choice_line(&c));
             }
             if let Ok(t) = (m.default_toml)() {
                 let inline = t.lines().filter(|l| !l.trim().is_empty()).collect::<Vec<_>>().join("; ");
@@ -71,6 +75,12 @@ pub fn params_json(model: &dyn Describe, defaults: Option<&dyn Describe>) -> Vec
         .collect()
 }
 
+/// The text line of a string option or switch: its allowed values in braces where a real
+/// parameter shows its range.
+pub fn choice_line(c: &Choice) -> String {
+    format!("      {:<22} default {:<10} one of {{{}}} {}", c.name, c.value, c.allowed.join(", "), c.doc)
+}
+
 /// JSON listing (for tools).
 pub fn json(family: Option<Family>) -> serde_json::Value {
     let mut out = Vec::new();
@@ -89,9 +99,14 @@ pub fn json(family: Option<Family>) -> serde_json::Value {
                 })
             })
             .collect();
+        let options: Vec<_> = d
+            .choices()
+            .into_iter()
+            .map(|c| serde_json::json!({"name": c.name, "default": c.value, "allowed": c.allowed, "doc": c.doc}))
+            .collect();
         out.push(serde_json::json!({
             "family": m.family.key(), "name": m.name, "equation": d.equation(),
-            "source": d.source(), "parameters": params
+            "source": d.source(), "parameters": params, "options": options
         }));
     }
     serde_json::Value::Array(out)

@@ -109,6 +109,21 @@ enum ClosureCommand {
         #[arg(long, default_value_t = 0)]
         seed: u64,
     },
+    /// Run the generic property checks on one closure (ours or a linked user's): every
+    /// parameter documented, TOML round trip, finite output over the parameter and input
+    /// ranges, batch = scalar, the model's declared limits. Exit 0 when all pass, 1 when a
+    /// check fails, 2 on bad input.
+    Check {
+        /// closure family (drag, hindrance, viscosity, granular, turbulence, fluctuation)
+        #[arg(long)]
+        family: String,
+        /// the model's TOML table, e.g. 'type = "dallavalle"' or '{type = "richardson_zaki", exponent = 4.65}'
+        #[arg(long)]
+        model: String,
+        /// random cases per property check
+        #[arg(long, default_value_t = 256)]
+        cases: u32,
+    },
     /// Draw closure curves side by side (PNG + CSV) from a comparison file such as
     /// cases/closures/drag.toml.
     Plot {
@@ -148,7 +163,7 @@ macro_rules! outln {
     }};
 }
 
-fn main() -> ExitCode {
+pub fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
@@ -156,6 +171,10 @@ fn main() -> ExitCode {
             saltus::errln!("error: {}", saltus::describe(&e));
             // a run stopped early wrote its outputs and says how it stopped; anything
             // else is a failure before or around the work
+            // a closure check that ran and found a failing check: 1, as a test runner would
+            if e.downcast_ref::<saltus::check::ChecksFailed>().is_some() {
+                return ExitCode::from(1);
+            }
             ExitCode::from(
                 e.downcast_ref::<saltus::runner::Stopped>().map_or(saltus::runner::EXIT_BAD_INPUT, |s| s.code),
             )
@@ -268,6 +287,15 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 match output {
                     Some(p) => result.write_csv_file(&p)?,
                     None => result.write_csv(std::io::stdout().lock())?,
+                }
+            }
+            ClosureCommand::Check { family, model, cases } => {
+                let family = saltus::listing::parse_family(&family)?;
+                let model = saltus::check::parse_model(&model)?;
+                let report = saltus::check::check(family, model, saltus::check::Options { cases })?;
+                out!("{}", report.text());
+                if !report.passed() {
+                    return Err(saltus::check::ChecksFailed { failures: report.failures(), model: report.model }.into());
                 }
             }
             ClosureCommand::Plot { file, out } => {

@@ -11,7 +11,9 @@
 //! Implement the family trait (say [`DragLaw`]) for a `Serialize + Deserialize` struct, mark
 //! the impl with `#[typetag::serde(name = "my_law")]`, implement [`Describe`] and register a
 //! default instance with [`register_model!`]. The scene format then accepts
-//! `[closures.drag] type = "my_law"` and `saltus models` lists it.
+//! `[closures.drag] type = "my_law"` and `saltus models` lists it. `#[derive(Describe)]`
+//! writes the [`Describe`] impl from attributes; `examples/custom_closure` is a whole crate
+//! and `docs/extending.md` the walk-through.
 
 pub mod closure;
 pub mod data;
@@ -34,8 +36,10 @@ pub use closure::viscosity::EffectiveViscosity;
 pub use closure::Family;
 pub use error::{Error, Result};
 pub use needs::{Field, Needs};
-pub use param::{Bound, Describe, Param, ParamError, ParamRange};
+pub use param::{Bound, Choice, Describe, DescribeField, Limit, Param, ParamError, ParamRange, ParamSet};
 pub use registry::ModelEntry;
+/// `#[derive(Describe)]` and `#[derive(Params)]`: see [`saltus_derive`].
+pub use saltus_derive::{Describe, Params};
 
 /// Re-exported so that `register_model!` works from crates that do not depend on inventory.
 pub use inventory;

@@ -161,7 +161,100 @@ impl ParamError {
     }
 }
 
+/// A parameter chosen among named values: a string option (`form = "prandtl"`), a switch
+/// (`enabled = true`) or the `type` of a sub-table (`g0.type`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Choice {
+    /// key in the closure's TOML table (dotted for nested tables)
+    pub name: String,
+    /// current value as written in TOML (without quotes)
+    pub value: String,
+    /// every accepted value
+    pub allowed: Vec<&'static str>,
+    /// meaning, one line
+    pub doc: &'static str,
+}
+
+/// What a closure lists about itself: real parameters and choices, in field order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ParamSet {
+    /// real parameters
+    pub params: Vec<Param>,
+    /// string options and switches
+    pub choices: Vec<Choice>,
+}
+
+/// `prefix.key`, or `key` at the top level (`prefix` empty).
+pub fn join_key(prefix: &str, key: &str) -> String {
+    if prefix.is_empty() {
+        key.to_string()
+    } else {
+        format!("{prefix}.{key}")
+    }
+}
+
+/// How a field that is not a plain `f64` describes itself inside a closure's listing.
+///
+/// `#[derive(Params)]` implements it for sub-table structs, string-option enums and
+/// tagged enums of sub-tables; `#[derive(Describe)]` calls it for every such field.
+pub trait DescribeField {
+    /// Add this field's parameters and choices to `out`, keyed under `prefix` (the
+    /// field's dotted key); `doc` is the field's own description.
+    fn describe_field(&self, prefix: &str, doc: &'static str, out: &mut ParamSet);
+}
+
+impl DescribeField for bool {
+    fn describe_field(&self, prefix: &str, doc: &'static str, out: &mut ParamSet) {
+        out.choices.push(Choice {
+            name: prefix.to_string(),
+            value: self.to_string(),
+            allowed: vec!["true", "false"],
+            doc,
+        });
+    }
+}
+
+impl<T: DescribeField> DescribeField for Option<T> {
+    fn describe_field(&self, prefix: &str, doc: &'static str, out: &mut ParamSet) {
+        if let Some(v) = self {
+            v.describe_field(prefix, doc, out);
+        }
+    }
+}
+
+/// A property a model declares about its main output, verified by `saltus closure check`
+/// (see `saltus::check`). The main output and input of each family: drag, C_D(Re_p);
+/// hindrance, f(phi) at every Re_p; viscosity, nu_eff/nu_f(phi); local granular
+/// rheology, mu(I or K). A limit declared on a family it does not apply to fails the check.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Limit {
+    /// drag: C_D Re_p tends to `cd_re` as Re_p -> 0 (24: Stokes 1851)
+    Stokes {
+        /// limit of C_D Re_p
+        cd_re: f64,
+    },
+    /// drag: C_D tends to `DragLaw::cd_inf()` as Re_p -> inf
+    HighReynolds,
+    /// hindrance, viscosity: the factor tends to 1 as phi -> 0
+    Dilute,
+    /// viscosity: nu_eff/nu_f = 1 + `coefficient` phi + O(phi^2) as phi -> 0
+    /// (5/2: Einstein 1906)
+    Einstein {
+        /// first-order coefficient
+        coefficient: f64,
+    },
+    /// the main output does not increase with the main input
+    Decreasing,
+    /// the main output does not decrease with the main input
+    Increasing,
+}
+
 /// Self-description shared by every closure: name, source, parameters, validation.
+///
+/// Derive it: `#[derive(Describe)]` with `#[describe(name, source, equation)]` on the
+/// struct and `#[param(range, unit)]` on its real parameters (see the `saltus_derive`
+/// crate documentation); write it by hand only for what the attributes cannot say.
 ///
 /// `validate` has a default that checks every [`Param`] against its range, then calls
 /// [`Describe::check_constraints`] for relations between parameters.
@@ -174,6 +267,14 @@ pub trait Describe {
     fn equation(&self) -> &'static str;
     /// Real parameters with their current values and ranges.
     fn params(&self) -> Vec<Param> {
+        Vec::new()
+    }
+    /// String options and switches with their allowed values.
+    fn choices(&self) -> Vec<Choice> {
+        Vec::new()
+    }
+    /// Limits and monotonicity the model declares (checked by `saltus closure check`).
+    fn limits(&self) -> Vec<Limit> {
         Vec::new()
     }
     /// Constraints linking several parameters (e.g. `phi_rlp < phi_max`).

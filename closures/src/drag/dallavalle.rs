@@ -1,7 +1,7 @@
 //! Dallavalle drag law.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, DragLaw, Param, ParamRange};
+use saltus_core::{register_model, Describe, DragLaw, Limit};
 use serde::{Deserialize, Serialize};
 
 /// Dallavalle (1943) drag coefficient
@@ -13,36 +13,26 @@ use serde::{Deserialize, Serialize};
 /// * Defaults: `cd_inf = 0.4`, `a = 24.4` (the papers' values; one DEM code uses 0.44).
 /// * Valid range: `cd_inf` in [0, 10], `a` in (0, 100]; any Re_p > 0. Tends to C_D^inf at
 ///   large Re_p and to a / Re_p (slightly above Stokes' 24/Re_p) at small Re_p.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "dallavalle",
+    source = "Chassagne et al. 2023 eq 2.11; Maurin et al. 2015 eq 12",
+    equation = "C_D = cd_inf + a / Re_p",
+    limits = [Limit::Stokes { cd_re: self.a }, Limit::HighReynolds, Limit::Decreasing]
+)]
 pub struct Dallavalle {
-    /// high-Reynolds-number drag coefficient C_D^inf
+    /// drag coefficient at infinite Re_p
+    #[param(range = "[0, 10]", unit = "-")]
     pub cd_inf: f64,
-    /// viscous coefficient a of a / Re_p
+    /// viscous coefficient of a/Re_p
+    #[param(range = "(0, 100]", unit = "-")]
     pub a: f64,
 }
 
 impl Default for Dallavalle {
     fn default() -> Self {
         Self { cd_inf: 0.4, a: 24.4 }
-    }
-}
-
-impl Describe for Dallavalle {
-    fn name(&self) -> &'static str {
-        "dallavalle"
-    }
-    fn source(&self) -> &'static str {
-        "Chassagne et al. 2023 eq 2.11; Maurin et al. 2015 eq 12"
-    }
-    fn equation(&self) -> &'static str {
-        "C_D = cd_inf + a / Re_p"
-    }
-    fn params(&self) -> Vec<Param> {
-        vec![
-            Param::new("cd_inf", self.cd_inf, ParamRange::closed(0.0, 10.0), "-", "drag coefficient at infinite Re_p"),
-            Param::new("a", self.a, ParamRange::open_closed(0.0, 100.0), "-", "viscous coefficient of a/Re_p"),
-        ]
     }
 }
 

@@ -1,7 +1,7 @@
 //! Haider-Levenspiel drag law for particles of any sphericity.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, DragLaw, Param, ParamRange};
+use saltus_core::{register_model, Describe, DragLaw, Limit};
 use serde::{Deserialize, Serialize};
 
 /// Haider & Levenspiel (1989) general-sphericity drag coefficient
@@ -26,10 +26,17 @@ use serde::{Deserialize, Serialize};
 ///   volume-equivalent sphere; Re_p below the drag crisis (about 2e5). `cd_inf` = C, the
 ///   limit as Re_p -> inf (approached slowly, as Re_p^(B-1)). For a sphere C_D decreases
 ///   up to Re_p of about 3600 and then rises slowly towards C, as the measured drag curve.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "haider_levenspiel",
+    source = "Cheng, Chauchat, Hsu & Calantoni eqs 7-11; Haider & Levenspiel 1989, Powder Technol. 58, 63-70",
+    equation = "C_D = 24/Re_p (1 + A Re_p^B) + C/(1 + D/Re_p), A..D = functions of sphericity (eqs 8-11)",
+    limits = [Limit::Stokes { cd_re: 24.0 }, Limit::HighReynolds]
+)]
 pub struct HaiderLevenspiel {
-    /// sphericity eta of the particle (1 for a sphere)
+    /// sphericity of the particle (volume-equivalent sphere area / particle area)
+    #[param(range = "(0, 1]", unit = "-")]
     pub sphericity: f64,
 }
 
@@ -82,27 +89,6 @@ impl HaiderLevenspiel {
     /// Coefficients A..D at this law's sphericity.
     pub fn coefficients(&self) -> HlCoefficients {
         HlCoefficients::at(self.sphericity)
-    }
-}
-
-impl Describe for HaiderLevenspiel {
-    fn name(&self) -> &'static str {
-        "haider_levenspiel"
-    }
-    fn source(&self) -> &'static str {
-        "Cheng, Chauchat, Hsu & Calantoni eqs 7-11; Haider & Levenspiel 1989, Powder Technol. 58, 63-70"
-    }
-    fn equation(&self) -> &'static str {
-        "C_D = 24/Re_p (1 + A Re_p^B) + C/(1 + D/Re_p), A..D = functions of sphericity (eqs 8-11)"
-    }
-    fn params(&self) -> Vec<Param> {
-        vec![Param::new(
-            "sphericity",
-            self.sphericity,
-            ParamRange::open_closed(0.0, 1.0),
-            "-",
-            "sphericity of the particle (volume-equivalent sphere area / particle area)",
-        )]
     }
 }
 

@@ -1,7 +1,7 @@
 //! Schiller-Naumann drag law.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, DragLaw};
+use saltus_core::{register_model, Describe, DragLaw, Limit};
 use serde::{Deserialize, Serialize};
 
 /// Reynolds number above which the Schiller-Naumann C_D is held at its Newton value.
@@ -23,21 +23,15 @@ pub const CD_NEWTON: f64 = 0.44;
 /// * Valid range: sphere, Re_p < 2e5 (below the drag crisis). `cd_inf` = 0.44.
 ///   C_D decreases with Re_p below 1000; at Re_p = 1000 the correlation jumps from
 ///   0.4383 to 0.44 (a 0.4 % step, as in every implementation of it).
-#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "schiller_naumann",
+    source = "Schiller & Naumann 1933, Z. Ver. Dtsch. Ing. 77, 318-320",
+    equation = "C_D = 24/Re_p (1 + 0.15 Re_p^0.687) for Re_p < 1000, 0.44 otherwise",
+    limits = [Limit::Stokes { cd_re: 24.0 }, Limit::HighReynolds]
+)]
 pub struct SchillerNaumann {}
-
-impl Describe for SchillerNaumann {
-    fn name(&self) -> &'static str {
-        "schiller_naumann"
-    }
-    fn source(&self) -> &'static str {
-        "Schiller & Naumann 1933, Z. Ver. Dtsch. Ing. 77, 318-320"
-    }
-    fn equation(&self) -> &'static str {
-        "C_D = 24/Re_p (1 + 0.15 Re_p^0.687) for Re_p < 1000, 0.44 otherwise"
-    }
-}
 
 #[typetag::serde(name = "schiller_naumann")]
 impl DragLaw for SchillerNaumann {

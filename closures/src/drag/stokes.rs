@@ -1,7 +1,7 @@
 //! Stokes drag law.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, DragLaw};
+use saltus_core::{register_model, Describe, DragLaw, Limit};
 use serde::{Deserialize, Serialize};
 
 /// Stokes (1851) drag coefficient of a sphere in creeping flow
@@ -14,21 +14,15 @@ use serde::{Deserialize, Serialize};
 /// * Defaults: no parameters.
 /// * Valid range: Re_p << 1 (within 10 % of the standard drag curve only for Re_p below
 ///   about 0.5); `cd_re` is exactly 24 for every Re_p and `cd_inf` is 0.
-#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "stokes",
+    source = "Stokes 1851, Trans. Camb. Phil. Soc. 9, 8-106",
+    equation = "C_D = 24 / Re_p",
+    limits = [Limit::Stokes { cd_re: 24.0 }, Limit::HighReynolds, Limit::Decreasing]
+)]
 pub struct Stokes {}
-
-impl Describe for Stokes {
-    fn name(&self) -> &'static str {
-        "stokes"
-    }
-    fn source(&self) -> &'static str {
-        "Stokes 1851, Trans. Camb. Phil. Soc. 9, 8-106"
-    }
-    fn equation(&self) -> &'static str {
-        "C_D = 24 / Re_p"
-    }
-}
 
 #[typetag::serde(name = "stokes")]
 impl DragLaw for Stokes {

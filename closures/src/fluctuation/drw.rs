@@ -4,8 +4,7 @@ use rand_distr::{Distribution, StandardNormal};
 use saltus_core::closure::Family;
 use saltus_core::rng::Rng;
 use saltus_core::{
-    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Needs, Param, ParamRange, ParticleSlip,
-    TurbulencePoint,
+    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Needs, ParticleSlip, TurbulencePoint,
 };
 use serde::{Deserialize, Serialize};
 
@@ -48,11 +47,17 @@ use serde::{Deserialize, Serialize};
 /// * The model returns full periods; a solver that starts every particle with a fresh
 ///   eddy at the same instant synchronises them, so it should shorten the first duration
 ///   by a uniform random fraction (random phase), as the diffusivity test does.
-#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "drw",
+    source = "Maurin et al. 2015 eqs 15-16",
+    equation = "u_z = l1, u_x = -u_z + l2, l1,l2 ~ N(0, R_xz/(rho_f eps)), held tau = depth/U; D = sigma^2 tau/2"
+)]
 pub struct DiscreteRandomWalk {
-    /// fixed redraw period (s); absent: the eddy turnover time depth / bulk velocity
+    /// fixed redraw period
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[param(range = "(0, inf)", unit = "s")]
     pub period: Option<f64>,
 }
 
@@ -74,24 +79,6 @@ impl DiscreteRandomWalk {
     /// Standard deviation sigma = sqrt(R_xz / (rho_f eps)); 0 for a negative or NaN stress.
     pub fn sigma(t: &TurbulencePoint) -> f64 {
         t.reynolds_stress.max(0.0).sqrt()
-    }
-}
-
-impl Describe for DiscreteRandomWalk {
-    fn name(&self) -> &'static str {
-        "drw"
-    }
-    fn source(&self) -> &'static str {
-        "Maurin et al. 2015 eqs 15-16"
-    }
-    fn equation(&self) -> &'static str {
-        "u_z = l1, u_x = -u_z + l2, l1,l2 ~ N(0, R_xz/(rho_f eps)), held tau = depth/U; D = sigma^2 tau/2"
-    }
-    fn params(&self) -> Vec<Param> {
-        match self.period {
-            Some(p) => vec![Param::new("period", p, ParamRange::positive(), "s", "fixed redraw period")],
-            None => Vec::new(),
-        }
     }
 }
 

@@ -4,8 +4,7 @@ use rand_distr::{Distribution, Exp1, StandardNormal};
 use saltus_core::closure::Family;
 use saltus_core::rng::Rng;
 use saltus_core::{
-    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Needs, Param, ParamRange, ParticleSlip,
-    TurbulencePoint,
+    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Needs, ParticleSlip, TurbulencePoint,
 };
 use serde::{Deserialize, Serialize};
 
@@ -48,12 +47,19 @@ use serde::{Deserialize, Serialize};
 ///   crossing, whose time would be 0 for a zero-size eddy), so the particle redraws once
 ///   the flow turns turbulent; D = 0.
 /// * Crossing needs slip > 0; a non-finite response time uses the limit t_c = l_e / slip.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "eim",
+    source = "Cheng, Chauchat, Hsu & Calantoni, section 2.4, eqs 36-37, table 1",
+    equation = "u_i = sqrt(2k/3) N(0,1), t = min(-C0 ln(1-xi)/(6 C_mu omega), -t_p ln(1 - l_e/(slip t_p))); D = C0 k/(9 C_mu omega)"
+)]
 pub struct EddyInteraction {
-    /// calibration coefficient C0 of the eddy lifetime
+    /// eddy lifetime coefficient C0
+    #[param(range = "(0, 20]", unit = "-")]
     pub c0: f64,
-    /// k-omega coefficient C_mu of the Lagrangian time T_l = 1/(6 C_mu omega)
+    /// k-omega coefficient C_mu
+    #[param(range = "(0, 1]", unit = "-")]
     pub c_mu: f64,
 }
 
@@ -82,24 +88,6 @@ impl EddyInteraction {
         }
         let reach = slip * tp;
         (l_e < reach).then(|| -tp * (-l_e / reach).ln_1p())
-    }
-}
-
-impl Describe for EddyInteraction {
-    fn name(&self) -> &'static str {
-        "eim"
-    }
-    fn source(&self) -> &'static str {
-        "Cheng, Chauchat, Hsu & Calantoni, section 2.4, eqs 36-37, table 1"
-    }
-    fn equation(&self) -> &'static str {
-        "u_i = sqrt(2k/3) N(0,1), t = min(-C0 ln(1-xi)/(6 C_mu omega), -t_p ln(1 - l_e/(slip t_p))); D = C0 k/(9 C_mu omega)"
-    }
-    fn params(&self) -> Vec<Param> {
-        vec![
-            Param::new("c0", self.c0, ParamRange::open_closed(0.0, 20.0), "-", "eddy lifetime coefficient C0"),
-            Param::new("c_mu", self.c_mu, ParamRange::open_closed(0.0, 1.0), "-", "k-omega coefficient C_mu"),
-        ]
     }
 }
 

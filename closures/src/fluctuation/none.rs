@@ -17,21 +17,14 @@ use serde::{Deserialize, Serialize};
 /// * Valid range: any flow, laminar included; it needs no turbulence field.
 /// * Decision: [`Fluctuation::is_active`] is false so that the solver pays for no random
 ///   number and no drift velocity; `draw` consumes no random number.
-#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "none",
+    source = "Maurin et al. 2015 without eqs 15-16; Chassagne et al. 2023 without eqs 4.3-4.4",
+    equation = "u' = 0, D = 0"
+)]
 pub struct NoFluctuation {}
-
-impl Describe for NoFluctuation {
-    fn name(&self) -> &'static str {
-        "none"
-    }
-    fn source(&self) -> &'static str {
-        "Maurin et al. 2015 without eqs 15-16; Chassagne et al. 2023 without eqs 4.3-4.4"
-    }
-    fn equation(&self) -> &'static str {
-        "u' = 0, D = 0"
-    }
-}
 
 #[typetag::serde(name = "none")]
 impl Fluctuation for NoFluctuation {

@@ -1,7 +1,7 @@
 //! mu(I) local rheology.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, GranularStress, LocalRheology, LocalState, Param, ParamError, ParamRange};
+use saltus_core::{register_model, Describe, GranularStress, Limit, LocalRheology, LocalState};
 use serde::{Deserialize, Serialize};
 
 /// mu(I) rheology of dense granular flows, bedload constants of Maurin et al. (2016)
@@ -21,51 +21,35 @@ use serde::{Deserialize, Serialize};
 /// * Decisions: I = 0 when |gamma_dot| = 0 (whatever p); I = +inf when p <= 0 and
 ///   |gamma_dot| > 0 (no confinement: the free-flight limit, mu = mu_2, phi = 0). Both
 ///   `friction` and `packing` accept +inf and return those limits; never NaN for I >= 0.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "mu_i",
+    source = "Chassagne et al. 2023 eqs 1.1-1.2; Maurin, Chauchat & Frey 2016",
+    equation = "mu = mu_s + (mu_2 - mu_s)/(i0/I + 1), phi = phi_c/(1 + b I), I = d |gamma_dot| / sqrt(p/rho_p)",
+    limits = [Limit::Increasing]
+)]
 pub struct MuI {
-    /// static friction coefficient mu_s (I -> 0)
+    /// static friction coefficient (I -> 0)
+    #[param(range = "[0, 2]", unit = "-")]
     pub mu_s: f64,
-    /// limiting friction coefficient mu_2 (I -> inf)
+    /// friction coefficient as I -> inf
+    #[param(range = "[0, 5]", unit = "-", greater_than = mu_s)]
     pub mu_2: f64,
     /// inertial-number scale I0
+    #[param(range = "(0, inf)", unit = "-")]
     pub i0: f64,
     /// volume fraction at I = 0
+    #[param(range = "(0, 1)", unit = "-")]
     pub phi_c: f64,
-    /// dilatancy coefficient b of phi(I)
+    /// dilatancy coefficient of phi(I)
+    #[param(range = "[0, inf)", unit = "-")]
     pub b: f64,
 }
 
 impl Default for MuI {
     fn default() -> Self {
         Self { mu_s: 0.35, mu_2: 0.97, i0: 0.69, phi_c: 0.61, b: 0.31 }
-    }
-}
-
-impl Describe for MuI {
-    fn name(&self) -> &'static str {
-        "mu_i"
-    }
-    fn source(&self) -> &'static str {
-        "Chassagne et al. 2023 eqs 1.1-1.2; Maurin, Chauchat & Frey 2016"
-    }
-    fn equation(&self) -> &'static str {
-        "mu = mu_s + (mu_2 - mu_s)/(i0/I + 1), phi = phi_c/(1 + b I), I = d |gamma_dot| / sqrt(p/rho_p)"
-    }
-    fn params(&self) -> Vec<Param> {
-        vec![
-            Param::new("mu_s", self.mu_s, ParamRange::closed(0.0, 2.0), "-", "static friction coefficient (I -> 0)"),
-            Param::new("mu_2", self.mu_2, ParamRange::closed(0.0, 5.0), "-", "friction coefficient as I -> inf"),
-            Param::new("i0", self.i0, ParamRange::positive(), "-", "inertial-number scale I0"),
-            Param::new("phi_c", self.phi_c, ParamRange::open(0.0, 1.0), "-", "volume fraction at I = 0"),
-            Param::new("b", self.b, ParamRange::non_negative(), "-", "dilatancy coefficient of phi(I)"),
-        ]
-    }
-    fn check_constraints(&self) -> Result<(), ParamError> {
-        if self.mu_2 <= self.mu_s {
-            return Err(ParamError::new("mu_2", self.mu_2, format!("> mu_s ({})", self.mu_s)));
-        }
-        Ok(())
     }
 }
 

@@ -1,7 +1,7 @@
 //! mu(K) local rheology (viscous-inertial).
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, GranularStress, LocalRheology, LocalState, Param, ParamError, ParamRange};
+use saltus_core::{register_model, Describe, GranularStress, Limit, LocalRheology, LocalState};
 use serde::{Deserialize, Serialize};
 
 /// mu(K) rheology unifying the viscous and inertial regimes (Trulsson et al. 2012)
@@ -22,20 +22,32 @@ use serde::{Deserialize, Serialize};
 /// * Decisions: K = 0 when |gamma_dot| = 0; K = +inf when p <= 0 and |gamma_dot| > 0
 ///   (mu = mu_2, phi = 0), as for `mu_i`. mu(phi) is clamped to phi in [0, phi_c]
 ///   (mu_2 at phi = 0, mu_1 at and above phi_c).
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "mu_k",
+    source = "Fry, Lacaze et al. 2024 eqs 34-39; Trulsson, Andreotti & Claudin 2012",
+    equation = "mu = mu_1 + (mu_2 - mu_1)/(1 + sqrt(K0/K)), phi = phi_c/(1 + b sqrt(K)), K = |gamma_dot| eta_f/p + alpha I^2",
+    limits = [Limit::Increasing]
+)]
 pub struct MuK {
-    /// jamming volume fraction phi_c (K = 0)
+    /// jamming volume fraction (K = 0)
+    #[param(range = "(0, 1)", unit = "-")]
     pub phi_c: f64,
-    /// dilatancy coefficient b of phi(K)
+    /// dilatancy coefficient of phi(K)
+    #[param(range = "(0, inf)", unit = "-")]
     pub b: f64,
-    /// friction coefficient at K -> 0
+    /// friction coefficient as K -> 0
+    #[param(range = "[0, 2]", unit = "-")]
     pub mu_1: f64,
     /// friction coefficient as K -> inf
+    #[param(range = "[0, 5]", unit = "-", greater_than = mu_1)]
     pub mu_2: f64,
-    /// sqrt(K0), scale of sqrt(K) in mu(K)
+    /// sqrt(K0) of mu(K)
+    #[param(range = "(0, inf)", unit = "-")]
     pub sqrt_k0: f64,
-    /// weight alpha of I^2 in K = J + alpha I^2
+    /// weight of I^2 in K = J + alpha I^2
+    #[param(range = "[0, inf)", unit = "-")]
     pub alpha: f64,
 }
 
@@ -57,34 +69,6 @@ impl MuK {
     pub fn control_of_packing(&self, phi: f64) -> f64 {
         let s = (self.phi_c / phi - 1.0) / self.b;
         s * s
-    }
-}
-
-impl Describe for MuK {
-    fn name(&self) -> &'static str {
-        "mu_k"
-    }
-    fn source(&self) -> &'static str {
-        "Fry, Lacaze et al. 2024 eqs 34-39; Trulsson, Andreotti & Claudin 2012"
-    }
-    fn equation(&self) -> &'static str {
-        "mu = mu_1 + (mu_2 - mu_1)/(1 + sqrt(K0/K)), phi = phi_c/(1 + b sqrt(K)), K = |gamma_dot| eta_f/p + alpha I^2"
-    }
-    fn params(&self) -> Vec<Param> {
-        vec![
-            Param::new("phi_c", self.phi_c, ParamRange::open(0.0, 1.0), "-", "jamming volume fraction (K = 0)"),
-            Param::new("b", self.b, ParamRange::positive(), "-", "dilatancy coefficient of phi(K)"),
-            Param::new("mu_1", self.mu_1, ParamRange::closed(0.0, 2.0), "-", "friction coefficient as K -> 0"),
-            Param::new("mu_2", self.mu_2, ParamRange::closed(0.0, 5.0), "-", "friction coefficient as K -> inf"),
-            Param::new("sqrt_k0", self.sqrt_k0, ParamRange::positive(), "-", "sqrt(K0) of mu(K)"),
-            Param::new("alpha", self.alpha, ParamRange::non_negative(), "-", "weight of I^2 in K = J + alpha I^2"),
-        ]
-    }
-    fn check_constraints(&self) -> Result<(), ParamError> {
-        if self.mu_2 <= self.mu_1 {
-            return Err(ParamError::new("mu_2", self.mu_2, format!("> mu_1 ({})", self.mu_1)));
-        }
-        Ok(())
     }
 }
 

@@ -1,11 +1,11 @@
 //! Di Felice hindrance with a Reynolds-dependent exponent.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, DragReynolds, Hindrance};
+use saltus_core::{register_model, Describe, DragReynolds, Hindrance, Limit, Params};
 use serde::{Deserialize, Serialize};
 
 /// Which Reynolds number the Di Felice exponent and the single-particle C_D use.
-#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq, Params)]
 #[serde(rename_all = "snake_case")]
 pub enum ReynoldsConvention {
     /// Re_sup = (1 - phi) |u_f - v_p| d / nu_f (Cheng et al.; peer codes)
@@ -37,8 +37,14 @@ pub const N_LIMIT: f64 = 3.7;
 ///   interstitial Re_p for both.
 /// * Valid range: phi in [0, 1), Re >= 0; n lies in [3.05, 3.7] with its minimum at
 ///   Re = 10^1.5. At Re = 0 (log10 Re = -inf) n takes its limit 3.7 (no NaN).
-#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "di_felice",
+    source = "Cheng, Chauchat, Hsu & Calantoni eqs 12-13; Di Felice 1994, Int. J. Multiphase Flow 20, 153-159",
+    equation = "f = (1 - phi)^(2 - n), n = 3.7 - 0.65 exp(-(1.5 - log10 Re)^2 / 2)",
+    limits = [Limit::Dilute]
+)]
 pub struct DiFelice {
     /// Reynolds-number convention of the exponent and of the single-particle C_D
     pub reynolds: ReynoldsConvention,
@@ -59,18 +65,6 @@ impl DiFelice {
     #[inline]
     fn convention_re(&self, phi: f64, re_p: f64) -> f64 {
         self.reynolds_convention().of(phi, re_p)
-    }
-}
-
-impl Describe for DiFelice {
-    fn name(&self) -> &'static str {
-        "di_felice"
-    }
-    fn source(&self) -> &'static str {
-        "Cheng, Chauchat, Hsu & Calantoni eqs 12-13; Di Felice 1994, Int. J. Multiphase Flow 20, 153-159"
-    }
-    fn equation(&self) -> &'static str {
-        "f = (1 - phi)^(2 - n), n = 3.7 - 0.65 exp(-(1.5 - log10 Re)^2 / 2)"
     }
 }
 

@@ -1,7 +1,7 @@
 //! No hindrance.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, DragReynolds, Hindrance};
+use saltus_core::{register_model, Describe, DragReynolds, Hindrance, Limit};
 use serde::{Deserialize, Serialize};
 
 /// No hindrance: the drag on a particle in a suspension is the single-particle drag
@@ -13,21 +13,15 @@ use serde::{Deserialize, Serialize};
 /// * Defaults: no parameters.
 /// * Valid range: dilute suspensions; any phi in [0, 1) and Re_p >= 0. C_D is evaluated
 ///   at the interstitial Re_p.
-#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "none",
+    source = "dilute limit of Maurin et al. 2015 eq 12 / Chassagne et al. 2023 eq 2.10",
+    equation = "f = 1",
+    limits = [Limit::Dilute]
+)]
 pub struct NoHindrance {}
-
-impl Describe for NoHindrance {
-    fn name(&self) -> &'static str {
-        "none"
-    }
-    fn source(&self) -> &'static str {
-        "dilute limit of Maurin et al. 2015 eq 12 / Chassagne et al. 2023 eq 2.10"
-    }
-    fn equation(&self) -> &'static str {
-        "f = 1"
-    }
-}
 
 #[typetag::serde(name = "none")]
 impl Hindrance for NoHindrance {

@@ -1,7 +1,7 @@
 //! Richardson-Zaki hindrance.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, DragReynolds, Hindrance, Param, ParamRange};
+use saltus_core::{register_model, Describe, DragReynolds, Hindrance, Limit};
 use serde::{Deserialize, Serialize};
 
 /// Richardson & Zaki (1954) hindrance of the drag force
@@ -18,37 +18,23 @@ use serde::{Deserialize, Serialize};
 ///   evaluated at the interstitial Re_p (the papers' convention). With the suspension's
 ///   buoyancy, the hindered slip then solves (3/4) C_D(Re) u_r^2 = (s-1) g d (1-phi)^(1+zeta)
 ///   (VERIFICATION.md benchmark 5).
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "richardson_zaki",
+    source = "Maurin et al. 2015 eq 12; Chassagne et al. 2023 eqs 2.10, 2.26; Richardson & Zaki 1954",
+    equation = "f = (1 - phi)^(-exponent)",
+    limits = [Limit::Dilute, Limit::Increasing]
+)]
 pub struct RichardsonZaki {
-    /// Richardson-Zaki exponent zeta of (1 - phi)^(-zeta)
+    /// Richardson-Zaki exponent zeta of the drag-force factor (1-phi)^(-zeta)
+    #[param(range = "[0, 10]", unit = "-")]
     pub exponent: f64,
 }
 
 impl Default for RichardsonZaki {
     fn default() -> Self {
         Self { exponent: 3.1 }
-    }
-}
-
-impl Describe for RichardsonZaki {
-    fn name(&self) -> &'static str {
-        "richardson_zaki"
-    }
-    fn source(&self) -> &'static str {
-        "Maurin et al. 2015 eq 12; Chassagne et al. 2023 eqs 2.10, 2.26; Richardson & Zaki 1954"
-    }
-    fn equation(&self) -> &'static str {
-        "f = (1 - phi)^(-exponent)"
-    }
-    fn params(&self) -> Vec<Param> {
-        vec![Param::new(
-            "exponent",
-            self.exponent,
-            ParamRange::closed(0.0, 10.0),
-            "-",
-            "Richardson-Zaki exponent zeta of the drag-force factor (1-phi)^(-zeta)",
-        )]
     }
 }
 

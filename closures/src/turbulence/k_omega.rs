@@ -3,11 +3,11 @@
 
 use saltus_core::closure::turbulence::{TwoEquation, TwoEquationInput, TwoEquationTerms, WallOmega};
 use saltus_core::closure::Family;
-use saltus_core::{register_model, ColumnView, Describe, Field, Needs, Param, ParamError, ParamRange, Turbulence};
+use saltus_core::{register_model, ColumnView, Describe, Field, Needs, Params, Turbulence};
 use serde::{Deserialize, Serialize};
 
 /// Bottom-wall treatment of omega in [`KOmega`].
-#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq, Params)]
 #[serde(rename_all = "snake_case")]
 pub enum KOmegaWall {
     /// smooth wall, eqs 30-31: omega imposed in the first cell
@@ -70,48 +70,72 @@ pub enum KOmegaWall {
 ///   1/T_relax is clamped at 0 (it is positive in sheet flow, the paper's remark after eq 33).
 /// * u* of eq 34 is the friction velocity of the forcing at the bed surface, given by the
 ///   solver; u* of eq 31 is the wall value sqrt((nu + nu_t) |du/dz|), also from the solver.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "k_omega",
+    source = "Cheng, Chauchat, Hsu & Calantoni eqs 19-35 and table 1 (Wilcox 1992 low-Re k-omega, two-phase terms)",
+    equation = "nu_t = alpha* k/omega; dk/dt = eps nu_t S^2 + diff - C_mu* k omega - drag - buoyancy; domega/dt = C_1w* (omega/k) eps nu_t S^2 + diff - C_2w omega^2 - ... + Gamma omega_bed/T_relax"
+)]
 pub struct KOmega {
     /// alpha_0 of eq 27
+    #[param(range = "(0, inf)", unit = "-")]
     pub alpha_0: f64,
     /// alpha*_0 of eq 28
+    #[param(range = "(0, inf)", unit = "-")]
     pub alpha_star_0: f64,
     /// Re_k of eq 28
+    #[param(range = "(0, inf)", unit = "-")]
     pub re_k: f64,
     /// Re_omega of eq 27
+    #[param(range = "(0, inf)", unit = "-")]
     pub re_omega: f64,
     /// Re_beta of eq 22
+    #[param(range = "(0, inf)", unit = "-")]
     pub re_beta: f64,
     /// C_mu of eq 22
+    #[param(range = "(0, inf)", unit = "-")]
     pub c_mu: f64,
     /// Prandtl number of k
+    #[param(range = "(0, inf)", unit = "-")]
     pub sigma_k: f64,
     /// Prandtl number of omega
+    #[param(range = "(0, inf)", unit = "-")]
     pub sigma_omega: f64,
-    /// C_s of eq 25 (drag damping of turbulence)
+    /// C_s of eq 25
+    #[param(range = "[0, inf)", unit = "-")]
     pub c_s: f64,
-    /// C_t of the eddy life time t_l = C_t / (C_mu omega)
+    /// eddy life time coefficient C_t
+    #[param(range = "(0, inf)", unit = "-")]
     pub c_t: f64,
     /// C_1omega of eq 27
+    #[param(range = "(0, inf)", unit = "-")]
     pub c_1omega: f64,
     /// C_2omega of eq 26
+    #[param(range = "(0, inf)", unit = "-")]
     pub c_2omega: f64,
     /// C_3omega of eq 26 (drag)
+    #[param(range = "[0, inf)", unit = "-")]
     pub c_3omega: f64,
     /// C_4omega of eq 26 (buoyancy)
+    #[param(range = "[0, inf)", unit = "-")]
     pub c_4omega: f64,
     /// turbulent Schmidt number of the buoyancy terms
+    #[param(range = "(0, inf)", unit = "-")]
     pub sigma_c: f64,
     /// von Karman constant of eq 31
+    #[param(range = "(0, 1]", unit = "-")]
     pub kappa: f64,
     /// bottom-wall treatment
     pub wall: KOmegaWall,
-    /// Nikuradse roughness k_s in particle diameters (eq 35 text)
+    /// Nikuradse roughness k_s in diameters (eq 35)
+    #[param(range = "(0, inf)", unit = "d")]
     pub roughness: f64,
     /// K_r of eq 35
+    #[param(range = "(0, inf)", unit = "-")]
     pub k_r: f64,
     /// bed volume fraction phi_b of eq 32
+    #[param(range = "(0, 1)", unit = "-")]
     pub phi_bed: f64,
 }
 
@@ -230,46 +254,6 @@ impl KOmega {
         let vis = 6.0 * nu / (0.075 * z0 * z0);
         let log = u_star / (self.c_mu.sqrt() * self.kappa * z0);
         vis.hypot(log)
-    }
-}
-
-impl Describe for KOmega {
-    fn name(&self) -> &'static str {
-        "k_omega"
-    }
-    fn source(&self) -> &'static str {
-        "Cheng, Chauchat, Hsu & Calantoni eqs 19-35 and table 1 (Wilcox 1992 low-Re k-omega, two-phase terms)"
-    }
-    fn equation(&self) -> &'static str {
-        "nu_t = alpha* k/omega; dk/dt = eps nu_t S^2 + diff - C_mu* k omega - drag - buoyancy; domega/dt = C_1w* (omega/k) eps nu_t S^2 + diff - C_2w omega^2 - ... + Gamma omega_bed/T_relax"
-    }
-    fn params(&self) -> Vec<Param> {
-        let pos = ParamRange::positive();
-        let nn = ParamRange::non_negative();
-        vec![
-            Param::new("alpha_0", self.alpha_0, pos, "-", "alpha_0 of eq 27"),
-            Param::new("alpha_star_0", self.alpha_star_0, pos, "-", "alpha*_0 of eq 28"),
-            Param::new("re_k", self.re_k, pos, "-", "Re_k of eq 28"),
-            Param::new("re_omega", self.re_omega, pos, "-", "Re_omega of eq 27"),
-            Param::new("re_beta", self.re_beta, pos, "-", "Re_beta of eq 22"),
-            Param::new("c_mu", self.c_mu, pos, "-", "C_mu of eq 22"),
-            Param::new("sigma_k", self.sigma_k, pos, "-", "Prandtl number of k"),
-            Param::new("sigma_omega", self.sigma_omega, pos, "-", "Prandtl number of omega"),
-            Param::new("c_s", self.c_s, nn, "-", "C_s of eq 25"),
-            Param::new("c_t", self.c_t, pos, "-", "eddy life time coefficient C_t"),
-            Param::new("c_1omega", self.c_1omega, pos, "-", "C_1omega of eq 27"),
-            Param::new("c_2omega", self.c_2omega, pos, "-", "C_2omega of eq 26"),
-            Param::new("c_3omega", self.c_3omega, nn, "-", "C_3omega of eq 26 (drag)"),
-            Param::new("c_4omega", self.c_4omega, nn, "-", "C_4omega of eq 26 (buoyancy)"),
-            Param::new("sigma_c", self.sigma_c, pos, "-", "turbulent Schmidt number of the buoyancy terms"),
-            Param::new("kappa", self.kappa, ParamRange::open_closed(0.0, 1.0), "-", "von Karman constant of eq 31"),
-            Param::new("roughness", self.roughness, pos, "d", "Nikuradse roughness k_s in diameters (eq 35)"),
-            Param::new("k_r", self.k_r, pos, "-", "K_r of eq 35"),
-            Param::new("phi_bed", self.phi_bed, ParamRange::open(0.0, 1.0), "-", "bed volume fraction phi_b of eq 32"),
-        ]
-    }
-    fn check_constraints(&self) -> Result<(), ParamError> {
-        Ok(())
     }
 }
 

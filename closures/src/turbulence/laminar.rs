@@ -16,21 +16,10 @@ use serde::{Deserialize, Serialize};
 ///   viscosity or Reynolds stress. A fluctuation model (`drw`, `eim`) on laminar flow is
 ///   meaningless, so the scene check refuses it instead of silently drawing zero
 ///   fluctuations. The solver still gets nu_t = 0 from [`Turbulence::eddy_viscosity`].
-#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(name = "laminar", source = "Chassagne et al. 2023 eq 2.7 with nu_t = 0", equation = "l_m = 0, nu_t = 0")]
 pub struct Laminar {}
-
-impl Describe for Laminar {
-    fn name(&self) -> &'static str {
-        "laminar"
-    }
-    fn source(&self) -> &'static str {
-        "Chassagne et al. 2023 eq 2.7 with nu_t = 0"
-    }
-    fn equation(&self) -> &'static str {
-        "l_m = 0, nu_t = 0"
-    }
-}
 
 #[typetag::serde(name = "laminar")]
 impl Turbulence for Laminar {

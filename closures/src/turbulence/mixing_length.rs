@@ -1,11 +1,11 @@
 //! Algebraic mixing-length turbulence closure (Prandtl, Li & Sawamoto, Berzi & Fraccarollo).
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, ColumnView, Describe, Field, Needs, Param, ParamRange, Turbulence};
+use saltus_core::{register_model, ColumnView, Describe, Field, Needs, Params, Turbulence};
 use serde::{Deserialize, Serialize};
 
 /// Which mixing-length profile [`MixingLength`] uses.
-#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq, Params)]
 #[serde(rename_all = "snake_case")]
 pub enum MixingLengthForm {
     /// l_m = kappa z (law of the wall, clear fluid)
@@ -15,6 +15,26 @@ pub enum MixingLengthForm {
     LiSawamoto,
     /// l_m = max(coefficient d (phi_max - phi)^exponent, floor d) (fluid-particle turbulence)
     BerziFraccarollo,
+}
+
+impl MixingLengthForm {
+    /// Paper and equation numbers of this form.
+    pub fn source(self) -> &'static str {
+        match self {
+            Self::Prandtl => "Prandtl; Chassagne et al. 2023 eqs 2.7-2.8a",
+            Self::LiSawamoto => "Chassagne et al. 2023 eqs 2.7-2.8; Maurin et al. 2015 eqs 4-5",
+            Self::BerziFraccarollo => "Chassagne et al. 2023 eqs 2.8a and 4.2 (Berzi & Fraccarollo 2015)",
+        }
+    }
+
+    /// The equation of this form, one line.
+    pub fn equation(self) -> &'static str {
+        match self {
+            Self::Prandtl => "nu_t = l^2 |du/dz|, l = kappa z",
+            Self::LiSawamoto => "nu_t = l^2 |du/dz|, l = kappa int_0^z (1 - phi/phi_max) dz'",
+            Self::BerziFraccarollo => "nu_t = l^2 |du/dz|, l = max(coefficient d (phi_max - phi)^exponent, floor d)",
+        }
+    }
 }
 
 /// Mixing-length eddy viscosity
@@ -49,20 +69,26 @@ pub enum MixingLengthForm {
 ///   [z/2, 2z] of the centre, true for any grid stretched by at most 2 between cells).
 /// * `berzi_fraccarollo` clamps phi_max - phi at 0 before the power, so a bed above
 ///   phi_max has the floor length.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(name = "mixing_length", source = self.form.source(), equation = self.form.equation())]
 pub struct MixingLength {
     /// mixing-length profile
     pub form: MixingLengthForm,
-    /// von Karman constant kappa
+    /// von Karman constant
+    #[param(range = "(0, 1]", unit = "-")]
     pub kappa: f64,
-    /// maximum (random close) packing fraction phi_max
+    /// maximum packing fraction (li_sawamoto, berzi_fraccarollo)
+    #[param(range = "(0, 1)", unit = "-")]
     pub phi_max: f64,
-    /// Berzi & Fraccarollo coefficient (times d)
+    /// mixing length scale in diameters (berzi_fraccarollo)
+    #[param(range = "(0, inf)", unit = "d")]
     pub coefficient: f64,
-    /// Berzi & Fraccarollo exponent
+    /// power of (phi_max - phi) (berzi_fraccarollo)
+    #[param(range = "[0, 10]", unit = "-")]
     pub exponent: f64,
-    /// minimal mixing length of Berzi & Fraccarollo (times d)
+    /// minimal mixing length in diameters (berzi_fraccarollo)
+    #[param(range = "[0, inf)", unit = "d")]
     pub floor: f64,
 }
 
@@ -91,61 +117,6 @@ impl MixingLength {
     #[inline]
     fn open_fraction(&self, phi: f64) -> f64 {
         (1.0 - phi / self.phi_max).clamp(0.0, 1.0).max(0.0)
-    }
-}
-
-impl Describe for MixingLength {
-    fn name(&self) -> &'static str {
-        "mixing_length"
-    }
-    fn source(&self) -> &'static str {
-        match self.form {
-            MixingLengthForm::Prandtl => "Prandtl; Chassagne et al. 2023 eqs 2.7-2.8a",
-            MixingLengthForm::LiSawamoto => "Chassagne et al. 2023 eqs 2.7-2.8; Maurin et al. 2015 eqs 4-5",
-            MixingLengthForm::BerziFraccarollo => "Chassagne et al. 2023 eqs 2.8a and 4.2 (Berzi & Fraccarollo 2015)",
-        }
-    }
-    fn equation(&self) -> &'static str {
-        match self.form {
-            MixingLengthForm::Prandtl => "nu_t = l^2 |du/dz|, l = kappa z",
-            MixingLengthForm::LiSawamoto => "nu_t = l^2 |du/dz|, l = kappa int_0^z (1 - phi/phi_max) dz'",
-            MixingLengthForm::BerziFraccarollo => {
-                "nu_t = l^2 |du/dz|, l = max(coefficient d (phi_max - phi)^exponent, floor d)"
-            }
-        }
-    }
-    fn params(&self) -> Vec<Param> {
-        vec![
-            Param::new("kappa", self.kappa, ParamRange::open_closed(0.0, 1.0), "-", "von Karman constant"),
-            Param::new(
-                "phi_max",
-                self.phi_max,
-                ParamRange::open(0.0, 1.0),
-                "-",
-                "maximum packing fraction (li_sawamoto, berzi_fraccarollo)",
-            ),
-            Param::new(
-                "coefficient",
-                self.coefficient,
-                ParamRange::positive(),
-                "d",
-                "mixing length scale in diameters (berzi_fraccarollo)",
-            ),
-            Param::new(
-                "exponent",
-                self.exponent,
-                ParamRange::closed(0.0, 10.0),
-                "-",
-                "power of (phi_max - phi) (berzi_fraccarollo)",
-            ),
-            Param::new(
-                "floor",
-                self.floor,
-                ParamRange::non_negative(),
-                "d",
-                "minimal mixing length in diameters (berzi_fraccarollo)",
-            ),
-        ]
     }
 }
 

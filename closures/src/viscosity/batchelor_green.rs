@@ -1,7 +1,7 @@
 //! Batchelor-Green effective viscosity.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, EffectiveViscosity};
+use saltus_core::{register_model, Describe, EffectiveViscosity, Limit};
 use serde::{Deserialize, Serialize};
 
 /// Batchelor & Green (1972) second-order viscosity of a suspension of spheres in shear
@@ -12,21 +12,15 @@ use serde::{Deserialize, Serialize};
 /// * Defaults: no parameters.
 /// * Valid range: viscous limit, phi <= ~0.1 (Fry et al.). Larger phi is evaluated without
 ///   refusal (the polynomial stays finite and increasing); `phi_limit` = 1.
-#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "batchelor_green",
+    source = "Fry et al. 2024 eq 29; Batchelor & Green 1972, J. Fluid Mech. 56, 401",
+    equation = "nu_eff / nu_f = 1 + 5/2 phi + 7.6 phi^2",
+    limits = [Limit::Einstein { coefficient: 2.5 }, Limit::Dilute, Limit::Increasing]
+)]
 pub struct BatchelorGreen {}
-
-impl Describe for BatchelorGreen {
-    fn name(&self) -> &'static str {
-        "batchelor_green"
-    }
-    fn source(&self) -> &'static str {
-        "Fry et al. 2024 eq 29; Batchelor & Green 1972, J. Fluid Mech. 56, 401"
-    }
-    fn equation(&self) -> &'static str {
-        "nu_eff / nu_f = 1 + 5/2 phi + 7.6 phi^2"
-    }
-}
 
 #[typetag::serde(name = "batchelor_green")]
 impl EffectiveViscosity for BatchelorGreen {

@@ -1,7 +1,7 @@
 //! Clear-fluid viscosity.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, EffectiveViscosity};
+use saltus_core::{register_model, Describe, EffectiveViscosity, Limit};
 use serde::{Deserialize, Serialize};
 
 /// The fluid phase keeps the clear-fluid viscosity
@@ -11,21 +11,15 @@ use serde::{Deserialize, Serialize};
 /// * Source: Chassagne et al. 2023 eq 2.7 (fluid stress with the clear-fluid viscosity).
 /// * Defaults: no parameters.
 /// * Valid range: any phi; `phi_limit` = 1.
-#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "clear_fluid",
+    source = "Chassagne et al. 2023 eq 2.7",
+    equation = "nu_eff / nu_f = 1",
+    limits = [Limit::Dilute]
+)]
 pub struct ClearFluid {}
-
-impl Describe for ClearFluid {
-    fn name(&self) -> &'static str {
-        "clear_fluid"
-    }
-    fn source(&self) -> &'static str {
-        "Chassagne et al. 2023 eq 2.7"
-    }
-    fn equation(&self) -> &'static str {
-        "nu_eff / nu_f = 1"
-    }
-}
 
 #[typetag::serde(name = "clear_fluid")]
 impl EffectiveViscosity for ClearFluid {

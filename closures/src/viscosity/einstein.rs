@@ -1,7 +1,7 @@
 //! Einstein effective viscosity.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, EffectiveViscosity};
+use saltus_core::{register_model, Describe, EffectiveViscosity, Limit};
 use serde::{Deserialize, Serialize};
 
 /// Einstein (1906, 1911) viscosity of a dilute suspension of spheres
@@ -13,21 +13,15 @@ use serde::{Deserialize, Serialize};
 /// * Defaults: no parameters (5/2 is the intrinsic viscosity of rigid spheres).
 /// * Valid range: theory for phi << 1 in the viscous limit; evaluated for any phi without
 ///   refusal; `phi_limit` = 1.
-#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "einstein",
+    source = "Fry et al. 2024 eq 28; Maurin et al. 2015 eq 13; Einstein 1906/1911",
+    equation = "nu_eff / nu_f = 1 + 5/2 phi",
+    limits = [Limit::Einstein { coefficient: 2.5 }, Limit::Dilute, Limit::Increasing]
+)]
 pub struct Einstein {}
-
-impl Describe for Einstein {
-    fn name(&self) -> &'static str {
-        "einstein"
-    }
-    fn source(&self) -> &'static str {
-        "Fry et al. 2024 eq 28; Maurin et al. 2015 eq 13; Einstein 1906/1911"
-    }
-    fn equation(&self) -> &'static str {
-        "nu_eff / nu_f = 1 + 5/2 phi"
-    }
-}
 
 #[typetag::serde(name = "einstein")]
 impl EffectiveViscosity for Einstein {

@@ -1,7 +1,7 @@
 //! Fry et al. (2024) fluid-phase viscosity for weakly inertial bedload.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, EffectiveViscosity, Param, ParamRange};
+use saltus_core::{register_model, Describe, EffectiveViscosity, Limit};
 use serde::{Deserialize, Serialize};
 
 /// Fry, Lacaze et al. (2024) apparent viscosity of the equivalent fluid phase in bedload
@@ -23,18 +23,29 @@ use serde::{Deserialize, Serialize};
 ///   *not* Einstein's 1 + 5/2 phi (beta0 = 0.565 is "quite smaller than 2.5").
 /// * The flow numbers are scene parameters, not local fields: beta is constant over the
 ///   domain, as in the paper's fits. `phi_limit` = 1.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "fry2024",
+    source = "Fry et al. 2024 eqs 32, 51 (first form), 52",
+    equation = "nu_eff / nu_f = (1 - phi)^(-beta), beta = beta0 + a (r theta sqrt(Re_p))^(2/3)",
+    limits = [Limit::Dilute, Limit::Increasing]
+)]
 pub struct Fry2024 {
-    /// viscous (dilute, theta -> 0) exponent beta0
+    /// viscous-limit exponent beta0
+    #[param(range = "[0, 10]", unit = "-")]
     pub beta0: f64,
-    /// prefactor a of the inertial correction
+    /// prefactor of (r theta sqrt(Re_p))^(2/3)
+    #[param(range = "[0, 10]", unit = "-")]
     pub a: f64,
-    /// Shields number theta = eta_f Gamma / (Delta rho g d) of the flow
+    /// Shields number theta of the flow
+    #[param(range = "(0, 10]", unit = "-")]
     pub shields: f64,
-    /// shear particle Reynolds number Re_p = rho_f Gamma d^2 / eta_f of the flow
+    /// shear particle Reynolds number rho_f Gamma d^2 / eta_f
+    #[param(range = "(0, 1000]", unit = "-")]
     pub re_p: f64,
     /// density ratio r = rho_p / rho_f
+    #[param(range = "(1, 20]", unit = "-")]
     pub density_ratio: f64,
 }
 
@@ -56,45 +67,6 @@ impl Fry2024 {
 #[inline]
 fn power_law(phi: f64, beta: f64) -> f64 {
     (1.0 - phi).powf(-beta)
-}
-
-impl Describe for Fry2024 {
-    fn name(&self) -> &'static str {
-        "fry2024"
-    }
-    fn source(&self) -> &'static str {
-        "Fry et al. 2024 eqs 32, 51 (first form), 52"
-    }
-    fn equation(&self) -> &'static str {
-        "nu_eff / nu_f = (1 - phi)^(-beta), beta = beta0 + a (r theta sqrt(Re_p))^(2/3)"
-    }
-    fn params(&self) -> Vec<Param> {
-        vec![
-            Param::new("beta0", self.beta0, ParamRange::closed(0.0, 10.0), "-", "viscous-limit exponent beta0"),
-            Param::new("a", self.a, ParamRange::closed(0.0, 10.0), "-", "prefactor of (r theta sqrt(Re_p))^(2/3)"),
-            Param::new(
-                "shields",
-                self.shields,
-                ParamRange::open_closed(0.0, 10.0),
-                "-",
-                "Shields number theta of the flow",
-            ),
-            Param::new(
-                "re_p",
-                self.re_p,
-                ParamRange::open_closed(0.0, 1000.0),
-                "-",
-                "shear particle Reynolds number rho_f Gamma d^2 / eta_f",
-            ),
-            Param::new(
-                "density_ratio",
-                self.density_ratio,
-                ParamRange::open_closed(1.0, 20.0),
-                "-",
-                "density ratio r = rho_p / rho_f",
-            ),
-        ]
-    }
 }
 
 #[typetag::serde(name = "fry2024")]

@@ -1,7 +1,7 @@
 //! Gibilaro power-law viscosity of the fluid phase.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, EffectiveViscosity, Param, ParamRange};
+use saltus_core::{register_model, Describe, EffectiveViscosity, Limit};
 use serde::{Deserialize, Serialize};
 
 /// Gibilaro et al. (2007) apparent viscosity of the fluid phase of a fluidised bed
@@ -15,31 +15,23 @@ use serde::{Deserialize, Serialize};
 /// * Valid range: `beta` in [0, 20]; phi in [0, 1), `phi_limit` = 1. Small-phi limit
 ///   1 + beta phi: *not* Einstein's 1 + 5/2 phi (Fry et al.: "it does not satisfy
 ///   theoretical models when developed at small phi").
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "gibilaro",
+    source = "Fry et al. 2024 eq 32; Gibilaro et al. 2007, Chem. Eng. Sci. 62, 294",
+    equation = "nu_eff / nu_f = (1 - phi)^(-beta)",
+    limits = [Limit::Dilute, Limit::Increasing]
+)]
 pub struct Gibilaro {
-    /// exponent beta of (1 - phi)^(-beta)
+    /// exponent beta of (1-phi)^(-beta)
+    #[param(range = "[0, 20]", unit = "-")]
     pub beta: f64,
 }
 
 impl Default for Gibilaro {
     fn default() -> Self {
         Self { beta: 2.8 }
-    }
-}
-
-impl Describe for Gibilaro {
-    fn name(&self) -> &'static str {
-        "gibilaro"
-    }
-    fn source(&self) -> &'static str {
-        "Fry et al. 2024 eq 32; Gibilaro et al. 2007, Chem. Eng. Sci. 62, 294"
-    }
-    fn equation(&self) -> &'static str {
-        "nu_eff / nu_f = (1 - phi)^(-beta)"
-    }
-    fn params(&self) -> Vec<Param> {
-        vec![Param::new("beta", self.beta, ParamRange::closed(0.0, 20.0), "-", "exponent beta of (1-phi)^(-beta)")]
     }
 }
 

@@ -1,7 +1,7 @@
 //! Krieger-Dougherty effective viscosity.
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, EffectiveViscosity, Param, ParamRange};
+use saltus_core::{register_model, Describe, EffectiveViscosity, Limit};
 use serde::{Deserialize, Serialize};
 
 /// Krieger & Dougherty (1959) viscosity of a dense suspension
@@ -18,48 +18,26 @@ use serde::{Deserialize, Serialize};
 ///   `phi_limit` = phi_m and `ratio` returns `f64::INFINITY` for phi >= phi_m (a solver
 ///   must keep phi below phi_m or cap the ratio itself). Small-phi slope = `intrinsic`
 ///   (Einstein's 5/2 with the default).
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "krieger_dougherty",
+    source = "Fry et al. 2024 eq 30 (exponent 5/2 phi_m, printed 3/2 is a typo); Krieger & Dougherty 1959",
+    equation = "nu_eff / nu_f = (1 - phi/phi_m)^(-intrinsic phi_m)",
+    limits = [Limit::Einstein { coefficient: self.intrinsic }, Limit::Dilute, Limit::Increasing]
+)]
 pub struct KriegerDougherty {
-    /// maximum volume fraction phi_m at which the viscosity diverges
+    /// volume fraction at which the viscosity diverges
+    #[param(range = "(0, 1)", unit = "-")]
     pub phi_m: f64,
-    /// intrinsic viscosity \[eta\] (5/2 for rigid spheres)
+    /// intrinsic viscosity \[eta\] (5/2 for spheres)
+    #[param(range = "(0, 10]", unit = "-")]
     pub intrinsic: f64,
 }
 
 impl Default for KriegerDougherty {
     fn default() -> Self {
         Self { phi_m: 0.62, intrinsic: 2.5 }
-    }
-}
-
-impl Describe for KriegerDougherty {
-    fn name(&self) -> &'static str {
-        "krieger_dougherty"
-    }
-    fn source(&self) -> &'static str {
-        "Fry et al. 2024 eq 30 (exponent 5/2 phi_m, printed 3/2 is a typo); Krieger & Dougherty 1959"
-    }
-    fn equation(&self) -> &'static str {
-        "nu_eff / nu_f = (1 - phi/phi_m)^(-intrinsic phi_m)"
-    }
-    fn params(&self) -> Vec<Param> {
-        vec![
-            Param::new(
-                "phi_m",
-                self.phi_m,
-                ParamRange::open(0.0, 1.0),
-                "-",
-                "volume fraction at which the viscosity diverges",
-            ),
-            Param::new(
-                "intrinsic",
-                self.intrinsic,
-                ParamRange::open_closed(0.0, 10.0),
-                "-",
-                "intrinsic viscosity [eta] (5/2 for spheres)",
-            ),
-        ]
     }
 }
 

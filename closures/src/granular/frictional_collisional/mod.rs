@@ -3,10 +3,7 @@
 use std::fmt;
 
 use saltus_core::closure::Family;
-use saltus_core::{
-    register_model, Describe, GranularStress, KineticCoefficients, KineticTheory, Param, ParamError, ParamRange,
-    SaltationInput,
-};
+use saltus_core::{register_model, Describe, GranularStress, KineticCoefficients, KineticTheory, SaltationInput};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::kinetic::{
@@ -106,20 +103,31 @@ impl<'de> Deserialize<'de> for StaticFriction {
 /// * Decisions: phi < 0 is evaluated as 0. For phi >= phi_max, g0, p_el, its derivative and
 ///   F1..F3 (and F4 unless e_eff = 1) are +inf, never NaN. F4 uses e_eff, F1..F3 the bare e.
 ///   The kinetic-part formulas are those of [`super::kinetic::garzo_dufty`].
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
+#[describe(
+    name = "frictional_collisional",
+    source = "Chassagne, Bonamy & Chauchat 2023 eqs 2.12-2.25, table 1, 3.2-3.13, App. B-D; Garzo & Dufty 1999; Johnson & Jackson 1987",
+    equation = "p = P0 (phi-phi_rlp)^3/(phi_max-phi)^5 + rho_p F1 T, tau = mu_s p_el + rho_p d F2 sqrt(T) |gamma_dot|, Gamma = rho_p/d F4' T^1.5"
+)]
 pub struct FrictionalCollisional {
     /// normal restitution coefficient e
+    #[param(range = "(0, 1]", unit = "-")]
     pub restitution: f64,
-    /// interparticle (microscopic) friction coefficient mu_p
+    /// interparticle friction coefficient mu_p
+    #[param(range = "[0, 2]", unit = "-")]
     pub friction: f64,
-    /// elastic modulus P0 of eq 2.14 (Pa)
+    /// elastic modulus P0 of the Johnson-Jackson pressure
+    #[param(range = "(0, inf)", unit = "Pa")]
     pub p0: f64,
-    /// random loose packing phi_rlp where the elastic pressure starts
+    /// random loose packing where p_el starts
+    #[param(range = "(0, 1)", unit = "-", less_than = phi_max)]
     pub phi_rlp: f64,
-    /// maximum packing phi_max where g0 and p_el diverge
+    /// maximum packing where g0 and p_el diverge
+    #[param(range = "(0, 1)", unit = "-")]
     pub phi_max: f64,
-    /// static friction of the elastic shear stress: number or "from_mu_p"
+    /// Coulomb static friction mu_s (number, or "from_mu_p": eq B1 of friction)
+    #[param(range = "[0, 2]", unit = "-", value = self.static_friction.value(self.friction))]
     pub static_friction: StaticFriction,
     /// dissipation by drag: "linear" (c_J = 3) or "quadratic" (3 + 2 C_D^inf/C_D)
     pub drag_dissipation: DragDissipation,
@@ -188,74 +196,6 @@ fn non_negative(phi: f64) -> f64 {
         0.0
     } else {
         phi
-    }
-}
-
-impl Describe for FrictionalCollisional {
-    fn name(&self) -> &'static str {
-        "frictional_collisional"
-    }
-    fn source(&self) -> &'static str {
-        "Chassagne, Bonamy & Chauchat 2023 eqs 2.12-2.25, table 1, 3.2-3.13, App. B-D; Garzo & Dufty 1999; Johnson & Jackson 1987"
-    }
-    fn equation(&self) -> &'static str {
-        "p = P0 (phi-phi_rlp)^3/(phi_max-phi)^5 + rho_p F1 T, tau = mu_s p_el + rho_p d F2 sqrt(T) |gamma_dot|, Gamma = rho_p/d F4' T^1.5"
-    }
-    fn params(&self) -> Vec<Param> {
-        let mut v = vec![
-            Param::new(
-                "restitution",
-                self.restitution,
-                ParamRange::open_closed(0.0, 1.0),
-                "-",
-                "normal restitution coefficient e",
-            ),
-            Param::new(
-                "friction",
-                self.friction,
-                ParamRange::closed(0.0, 2.0),
-                "-",
-                "interparticle friction coefficient mu_p",
-            ),
-            Param::new(
-                "p0",
-                self.p0,
-                ParamRange::positive(),
-                "Pa",
-                "elastic modulus P0 of the Johnson-Jackson pressure",
-            ),
-            Param::new(
-                "phi_rlp",
-                self.phi_rlp,
-                ParamRange::open(0.0, 1.0),
-                "-",
-                "random loose packing where p_el starts",
-            ),
-            Param::new(
-                "phi_max",
-                self.phi_max,
-                ParamRange::open(0.0, 1.0),
-                "-",
-                "maximum packing where g0 and p_el diverge",
-            ),
-            Param::new(
-                "static_friction",
-                self.static_friction.value(self.friction),
-                ParamRange::closed(0.0, 2.0),
-                "-",
-                "Coulomb static friction mu_s (number, or \"from_mu_p\": eq B1 of friction)",
-            ),
-        ];
-        v.extend(self.g0.params().into_iter().map(|p| p.prefixed("g0")));
-        v.extend(self.restitution_model.params().into_iter().map(|p| p.prefixed("restitution_model")));
-        v.extend(self.saltation.params().into_iter().map(|p| p.prefixed("saltation")));
-        v
-    }
-    fn check_constraints(&self) -> Result<(), ParamError> {
-        if self.phi_rlp >= self.phi_max {
-            return Err(ParamError::new("phi_rlp", self.phi_rlp, format!("< phi_max ({})", self.phi_max)));
-        }
-        Ok(())
     }
 }
 

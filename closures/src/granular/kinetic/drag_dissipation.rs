@@ -1,5 +1,6 @@
 //! Drag dissipation factor c_J of J_int = -phi (1 - phi) K c_J T.
 
+use saltus_core::Params;
 use serde::{Deserialize, Serialize};
 
 /// How the work of the drag force on the velocity fluctuations is closed.
@@ -11,7 +12,7 @@ use serde::{Deserialize, Serialize};
 ///
 /// Guard: with C_D <= 0 or not finite the ratio C_D^inf / C_D is taken as 1 (fully
 /// quadratic limit); C_D = +inf (Re_p -> 0) gives 3. No clamp otherwise.
-#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq, Params)]
 #[serde(rename_all = "snake_case")]
 pub enum DragDissipation {
     /// c_J = 3 (eq 2.25)

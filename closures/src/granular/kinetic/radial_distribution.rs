@@ -1,7 +1,7 @@
 //! Radial distribution function at contact g0(phi) (the `g0` table of
 //! `frictional_collisional`).
 
-use saltus_core::{Param, ParamRange};
+use saltus_core::Params;
 use serde::{Deserialize, Serialize};
 
 /// Carnahan & Starling (1969): g0 = (2 - phi) / (2 (1 - phi)^3).
@@ -38,10 +38,11 @@ pub fn friction_coefficient_a(mu_p: f64, a0: f64, a_max: f64, delta: f64) -> f64
 }
 
 /// Parameter of the `chialvo_sundaresan` g0.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Params)]
 #[serde(deny_unknown_fields, default)]
 pub struct ChialvoSundaresanG0 {
-    /// coefficient a of eq 2.23
+    /// coefficient a of the divergent term a phi^2/(phi_max - phi)^1.5
+    #[param(range = "[0, 100]", unit = "-")]
     pub a: f64,
 }
 
@@ -52,14 +53,17 @@ impl Default for ChialvoSundaresanG0 {
 }
 
 /// Parameters of the `chialvo_sundaresan_friction` g0.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Params)]
 #[serde(deny_unknown_fields, default)]
 pub struct ChialvoSundaresanFrictionG0 {
-    /// a at mu_p = 0 (Chialvo-Sundaresan frictionless value)
+    /// a at mu_p = 0
+    #[param(range = "[0, 100]", unit = "-")]
     pub a0: f64,
-    /// saturation value of a at large mu_p
+    /// a at large mu_p
+    #[param(range = "[0, 100]", unit = "-")]
     pub a_max: f64,
-    /// friction scale delta of the tanh
+    /// friction scale of tanh(mu_p/delta)
+    #[param(range = "(0, inf)", unit = "-")]
     pub delta: f64,
 }
 
@@ -77,7 +81,7 @@ impl Default for ChialvoSundaresanFrictionG0 {
 ///   eq 3.2 with a(mu_p) of eq 3.3 and mu_p the model's `friction` (proposed model).
 ///
 /// The two Chialvo-Sundaresan forms return `+inf` for phi >= phi_max.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Params)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum RadialDistribution {
     /// Carnahan & Starling (1969) (an empty struct variant so that unknown keys are refused)
@@ -111,25 +115,6 @@ impl RadialDistribution {
         match self {
             Self::CarnahanStarling {} => carnahan_starling(phi),
             _ => chialvo_sundaresan(phi, phi_max, self.coefficient_a(mu_p)),
-        }
-    }
-
-    /// Real parameters, keys relative to the g0 table (prefix them with `g0`).
-    pub fn params(&self) -> Vec<Param> {
-        match self {
-            Self::CarnahanStarling {} => Vec::new(),
-            Self::ChialvoSundaresan(c) => vec![Param::new(
-                "a",
-                c.a,
-                ParamRange::closed(0.0, 100.0),
-                "-",
-                "coefficient a of the divergent term a phi^2/(phi_max - phi)^1.5",
-            )],
-            Self::ChialvoSundaresanFriction(c) => vec![
-                Param::new("a0", c.a0, ParamRange::closed(0.0, 100.0), "-", "a at mu_p = 0"),
-                Param::new("a_max", c.a_max, ParamRange::closed(0.0, 100.0), "-", "a at large mu_p"),
-                Param::new("delta", c.delta, ParamRange::positive(), "-", "friction scale of tanh(mu_p/delta)"),
-            ],
         }
     }
 }

@@ -1,7 +1,7 @@
 //! Effective restitution coefficient used in the collisional dissipation F4 (the
 //! `restitution_model` table of `frictional_collisional`).
 
-use saltus_core::{Param, ParamRange};
+use saltus_core::Params;
 use serde::{Deserialize, Serialize};
 
 /// Jenkins & Zhang (2002) friction correction f(mu_p) of e_eff = e - f(mu_p),
@@ -39,10 +39,11 @@ pub fn jenkins_zhang_f(mu_p: f64, e: f64, e_t: f64) -> f64 {
 }
 
 /// Parameters of the `jenkins_zhang` restitution model.
-#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Params)]
 #[serde(deny_unknown_fields, default)]
 pub struct JenkinsZhang {
-    /// tangential restitution e_t of sticking contacts (0 in Chassagne et al.)
+    /// tangential restitution of sticking contacts
+    #[param(range = "[0, 1]", unit = "-")]
     pub e_t: f64,
 }
 
@@ -54,7 +55,7 @@ pub struct JenkinsZhang {
 ///   model). The clamp at 0 is a saltus decision: for small e and large mu_p eq C1 goes
 ///   negative (e = 0.3, mu_p > ~0.58; e = 0.1, mu_p > ~0.08), where 1 - e_eff^2 would start
 ///   to *decrease* with friction; clamping keeps dissipation monotone in mu_p.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Params)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum RestitutionModel {
     /// e_eff = e (an empty struct variant so that unknown keys are refused)
@@ -76,20 +77,6 @@ impl RestitutionModel {
         match self {
             Self::Plain {} => e,
             Self::JenkinsZhang(j) => (e - jenkins_zhang_f(mu_p, e, j.e_t)).max(0.0),
-        }
-    }
-
-    /// Real parameters, keys relative to the `restitution_model` table.
-    pub fn params(&self) -> Vec<Param> {
-        match self {
-            Self::Plain {} => Vec::new(),
-            Self::JenkinsZhang(j) => vec![Param::new(
-                "e_t",
-                j.e_t,
-                ParamRange::closed(0.0, 1.0),
-                "-",
-                "tangential restitution of sticking contacts",
-            )],
         }
     }
 }

@@ -1,7 +1,7 @@
 //! Saltation correction of the kinetic viscosity and conductivity (Chassagne et al. 2023
 //! section 3.4, after Jenkins, Cantat & Valance 2010).
 
-use saltus_core::{Param, ParamRange, SaltationInput};
+use saltus_core::{Params, SaltationInput};
 use serde::{Deserialize, Serialize};
 
 /// Saltation viscosity and its harmonic combination with the kinetic part:
@@ -22,14 +22,16 @@ use serde::{Deserialize, Serialize};
 ///   (no drag) or d <= 0 gives eta_salt = +inf, i.e. no correction; sqrt(T) = 0 or phi = 0
 ///   gives eta_salt = 0 and removes the kinetic part.
 /// * `saltation = { enabled = false }` switches it off (initial model).
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Params)]
 #[serde(deny_unknown_fields, default)]
 pub struct Saltation {
     /// apply the correction
     pub enabled: bool,
-    /// correlation constant c0 of eq 3.5
+    /// correlation constant c0 of eta_salt (eq 3.5)
+    #[param(range = "(0, inf)", unit = "-")]
     pub c0: f64,
-    /// ratio sigma = eta_salt / kappa_salt of eq 3.9
+    /// eta_salt / kappa_salt (eq 3.9)
+    #[param(range = "(0, inf)", unit = "-")]
     pub sigma: f64,
 }
 
@@ -59,14 +61,6 @@ impl Saltation {
     #[inline]
     pub fn kappa_salt(&self, phi: f64, s: &SaltationInput) -> f64 {
         self.eta_salt(phi, s) / self.sigma
-    }
-
-    /// Real parameters, keys relative to the `saltation` table.
-    pub fn params(&self) -> Vec<Param> {
-        vec![
-            Param::new("c0", self.c0, ParamRange::positive(), "-", "correlation constant c0 of eta_salt (eq 3.5)"),
-            Param::new("sigma", self.sigma, ParamRange::positive(), "-", "eta_salt / kappa_salt (eq 3.9)"),
-        ]
     }
 }
 

@@ -1,0 +1,4 @@
+fn main() -> std::process::ExitCode {
+    custom_closure::link();
+    saltus::cli::main()
+}
