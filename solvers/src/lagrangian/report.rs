@@ -91,10 +91,10 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         particles: Some(mobile),
         particle_steps_per_s: throughput,
         shields_turbulent: transport.filter(|_| scales.stress > 0.0).and_then(|t| finite(scales.shields(t.2))),
-        granular_temperature: dry.and_then(|c| finite(c.last.1)),
+        granular_temperature: dry.and_then(|_| finite(m.particles().temperature())),
         haff_tau_s: haff.and_then(|h| cooling.haff_tau(h)).and_then(finite),
         haff_tau_fit_s: haff.and(cooling.fitted_tau()).and_then(finite),
-        haff_granular_temperature: haff.and_then(|h| cooling.haff_last(h)).and_then(finite),
+        haff_granular_temperature: haff.and_then(|h| cooling.haff_at(h, m.time())).and_then(finite),
         haff_max_deviation: haff.and_then(|_| finite(cooling.max_deviation)),
     };
     let measured = match (summary.qs_star, summary.shields) {
@@ -139,7 +139,9 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         ),
     };
     let steady = steady_sentence(m, fluid);
-    let temperature = dry.map(|c| cooling_sentence(c, haff)).unwrap_or_default();
+    let temperature = dry
+        .map(|c| cooling_sentence(c, haff, m.time(), summary.granular_temperature.unwrap_or(0.0)))
+        .unwrap_or_default();
     let text = format!(
         "{}: {} after {:.3} s of flow ({} DEM steps of {:.3e} s after {} of deposition, {} in all, {} neighbour-list builds, {} mobile particles, {samples} averaging samples) in {:.1} s wall time ({:.2e} particle-steps/s); {measured}; {steady}{temperature}",
         scene.meta.name,
@@ -178,17 +180,18 @@ fn steady_sentence(m: &Lagrangian<'_>, fluid: bool) -> String {
     }
 }
 
-/// The temperature history of a run without fluid and, for a cooling scene, Haff's law.
-fn cooling_sentence(c: &super::stats::Cooling, haff: Option<f64>) -> String {
+/// The temperature history of a run without fluid, which ends at `time` with the
+/// temperature `last`, and, for a cooling scene, Haff's law.
+fn cooling_sentence(c: &super::stats::Cooling, haff: Option<f64>, time: f64, last: f64) -> String {
     let history = format!(
-        "; granular temperature {:.4e} -> {:.4e} m^2/s^2 over {:.3} s ({} samples, column theta_g of timeseries.csv)",
-        c.initial, c.last.1, c.last.0, c.samples
+        "; granular temperature {:.4e} -> {last:.4e} m^2/s^2 over {time:.3} s (column theta_g of timeseries.csv; {} samples, one per fluid period, for Haff's law)",
+        c.initial, c.samples
     );
-    let comparison = match haff.and_then(|h| Some((c.haff_tau(h)?, c.haff_last(h)?))) {
-        Some((tau, last)) => format!(
-            "; Haff's law T0 / (1 + t/tau)^2: tau = {tau:.4} s from the kinetic theory, {} fitted; T at the end {:+.2} % from Haff's {last:.4e}, largest deviation {:.2} % over the run",
+    let comparison = match haff.and_then(|h| Some((c.haff_tau(h)?, c.haff_at(h, time)?))) {
+        Some((tau, predicted)) => format!(
+            "; Haff's law T0 / (1 + t/tau)^2: tau = {tau:.4} s from the kinetic theory, {} fitted; T at the end {:+.2} % from Haff's {predicted:.4e}, largest deviation {:.2} % over the samples",
             c.fitted_tau().map_or_else(|| "none".into(), |t| format!("{t:.4} s")),
-            100.0 * (c.last.1 / last - 1.0),
+            100.0 * (last / predicted - 1.0),
             100.0 * c.max_deviation
         ),
         None => "; no Haff comparison: the scene is not a homogeneous cooling one (inelastic frictionless gas, no body force, triply periodic box)".into(),

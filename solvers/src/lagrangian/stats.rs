@@ -499,9 +499,9 @@ impl Cooling {
         (self.samples > 0 && self.initial > 0.0).then(|| haff / self.initial.sqrt())
     }
 
-    /// Haff's temperature at the time of the last sample (m^2/s^2).
-    pub fn haff_last(&self, haff: f64) -> Option<f64> {
-        self.haff_tau(haff).map(|tau| self.initial / (1.0 + self.last.0 / tau).powi(2))
+    /// Haff's temperature at time `t` (m^2/s^2).
+    pub fn haff_at(&self, haff: f64, t: f64) -> Option<f64> {
+        self.haff_tau(haff).map(|tau| self.initial / (1.0 + t / tau).powi(2))
     }
 
     /// Cooling time fitted to the history (s): intercept over slope of 1/sqrt(T) against
@@ -610,6 +610,6 @@ mod tests {
         }
         assert!((c.fitted_tau().unwrap_or(0.0) / tau - 1.0).abs() < 1e-9);
         assert!(c.max_deviation < 1e-12 && (c.haff_tau(haff).unwrap_or(0.0) - tau).abs() < 1e-12);
-        assert!((c.haff_last(haff).unwrap_or(0.0) / c.last.1 - 1.0).abs() < 1e-12);
+        assert!((c.haff_at(haff, c.last.0).unwrap_or(0.0) / c.last.1 - 1.0).abs() < 1e-12);
     }
 }
