@@ -391,15 +391,18 @@ fn a_fluid_period_longer_than_the_run_ends_with_an_outcome_not_a_panic() {
 }
 
 #[test]
-fn a_short_dem_run_reports_its_samples_a_finite_standard_error_and_all_its_steps() {
+fn a_short_dem_run_reports_its_samples_and_all_its_steps_and_no_unfounded_standard_error() {
     // samples: one per fluid update from stats_start on, counted here from the steps
-    // themselves; the standard error of qs from their blocking is finite; total_steps is
-    // the deposition's steps plus the flow's
-    let start = 0.5;
+    // themselves; total_steps is the deposition's steps plus the flow's. The window
+    // (0.3 s to 0.9 s, 300 samples) is short against the correlation time of this bed's
+    // qs(t) (lag-1 correlation 0.65 between blocks of 16 samples): Jonsson's test alone
+    // would accept those 19 blocks, the long-block check refuses them, so the standard
+    // error is absent and the paragraph says why, rather than an error 3 times too small.
+    let start = 0.3;
     let s = small_bed(&[
-        "solver.lagrangian.end_time=2.0",
+        "solver.lagrangian.end_time=0.9",
         &format!("solver.lagrangian.stats_start={start}"),
-        "solver.lagrangian.fluid_period=0.005",
+        "solver.lagrangian.fluid_period=0.002",
     ]);
     let mut m = model(&s);
     m.deposit().expect("deposition");
@@ -418,7 +421,7 @@ fn a_short_dem_run_reports_its_samples_a_finite_standard_error_and_all_its_steps
     }
     let r = m.report(&Ending::EndTime, 1.0);
     let sum = &r.summary;
-    assert!(taken > 100, "{taken} samples");
+    assert!(taken > 250, "{taken} samples");
     assert_eq!(sum.samples, Some(taken));
     assert_eq!(m.stats().qs.samples(), taken as u64);
     assert_eq!(sum.total_steps, Some((settle + m.steps()) as usize));
@@ -427,13 +430,11 @@ fn a_short_dem_run_reports_its_samples_a_finite_standard_error_and_all_its_steps
     // the blocking's mean is the time average the summary reports
     let mean = m.stats().qs.mean().expect("mean");
     assert!((mean / qs - 1.0).abs() < 1e-9, "{mean} vs {qs}");
-    let (se, se_star) = (sum.qs_stderr, sum.qs_star_stderr);
-    eprintln!("{}", r.text);
-    let se = se.unwrap_or_else(|| panic!("no standard error: {}", r.text));
-    assert!(se.is_finite() && se > 0.0 && se < qs.abs(), "stderr {se} of qs {qs}");
-    let ratio = se_star.expect("qs* stderr") / se;
-    assert!((ratio / (sum.qs_star.expect("qs*") / qs) - 1.0).abs() < 1e-12);
-    assert!(r.text.contains("Flyvbjerg-Petersen") && r.text.contains("steady test"), "{}", r.text);
+    assert_eq!((sum.qs_stderr, sum.qs_star_stderr), (None, None), "{}", r.text);
+    assert!(r.text.contains("no standard error") && r.text.contains("correlation time"), "{}", r.text);
+    assert!(r.text.contains("steady test") && r.text.contains("2 s windows"), "{}", r.text);
+    let json = serde_json::to_string(sum).expect("json");
+    assert!(!json.contains("stderr") && !json.contains("NaN") && !json.contains("null"), "{json}");
 }
 
 fn read_table(file: &Path) -> (Vec<String>, Vec<Vec<String>>) {

@@ -98,6 +98,15 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         haff_max_deviation: haff.and_then(|_| finite(cooling.max_deviation)),
     };
     let measured = match (summary.qs_star, summary.shields) {
+        (None, _) | (_, None) if samples > 0 => format!(
+            "qs = {:.4e} m^2/s{} (qs* and Shields undefined: no gravity or no density contrast to scale them)",
+            summary.qs.unwrap_or(0.0),
+            match (blocked, stderr) {
+                (Some(Ok(_)), Some(e)) => format!(" +- {e:.4e} (standard error, blocking)"),
+                (Some(Err(why)), _) => format!(" (no standard error: {why})"),
+                _ => String::new(),
+            }
+        ),
         (Some(q), Some(sh)) => {
             let layers = match (summary.bed_height, summary.transport_layer_thickness) {
                 (Some(b), Some(t)) => format!("bed surface {b:.4} m, transport layer {t:.4} m"),
@@ -111,7 +120,10 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
                         .map(|s| {
                             // statistical inefficiency = 2 x the integrated correlation time
                             let tau = 0.5 * s * sample_period;
-                            format!("; integrated correlation time of qs(t) {tau:.3} s, blocks {:.1} times longer", span / tau)
+                            format!(
+                                "; integrated correlation time of qs(t) {tau:.3} s, blocks {:.1} times longer",
+                                span / tau
+                            )
                         })
                         .unwrap_or_default();
                     format!(
