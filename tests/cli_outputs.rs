@@ -139,12 +139,12 @@ fn sigterm_during_the_deposition_writes_a_checkpoint_that_restarts() {
     assert_eq!(s["steps"].as_u64(), Some(0), "{s}");
     assert_eq!(
         std::fs::read_to_string(d.join("timeseries.csv")).unwrap(),
-        "t,qs,qs_star,shields,bed_surface,residual,steps\n"
+        "t,qs,qs_star,shields,bed_surface,residual,steps,theta_g\n"
     );
     let s = restart(&d, "solver.lagrangian.end_time=0.02");
     assert!(s["steps"].as_u64().is_some_and(|n| n > 0), "{s}");
     let (header, rows) = read_table(&d.join("timeseries.csv"));
-    assert_eq!(header, ["t", "qs", "qs_star", "shields", "bed_surface", "residual", "steps"]);
+    assert_eq!(header, ["t", "qs", "qs_star", "shields", "bed_surface", "residual", "steps", "theta_g"]);
     assert!(rows.len() >= 2 && cell(&header, &rows[0], "t").parse::<f64>() == Ok(0.0), "{rows:?}");
 }
 

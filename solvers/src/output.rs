@@ -61,6 +61,16 @@ pub struct Summary {
     /// qs / sqrt((s - 1) g d^3); absent with qs or without a density contrast
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub qs_star: Option<f64>,
+    /// DEM runs: standard error of the time-averaged qs (m^2/s), Flyvbjerg-Petersen
+    /// blocking of the qs samples of the averaging window with the block length chosen by
+    /// Jonsson's test ([`crate::lagrangian::stats::Blocking`]); absent where it cannot be
+    /// estimated (too few samples, or blocks that stay correlated: the paragraph says
+    /// which)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub qs_stderr: Option<f64>,
+    /// DEM runs: standard error of qs_star, qs_stderr on the same scale
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub qs_star_stderr: Option<f64>,
     /// largest fluid shear stress (viscous + turbulent) over (rho_p - rho_f) g d; absent
     /// when not measured
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -81,8 +91,15 @@ pub struct Summary {
     pub ending: String,
     /// simulated time (s)
     pub sim_time_s: f64,
-    /// accepted steps
+    /// accepted steps (of the flow: the DEM's deposition is in `total_steps`)
     pub steps: usize,
+    /// DEM runs: steps of the whole run, the deposition's included
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub total_steps: Option<usize>,
+    /// DEM runs: averaging samples (one per fluid update from `stats_start` on), the
+    /// samples of the time averages and of qs_stderr
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub samples: Option<usize>,
     /// rejected (retried) steps; absent for solvers without step rejection (the DEM)
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rejected_steps: Option<usize>,
@@ -111,6 +128,25 @@ pub struct Summary {
     /// Maurin et al. 2015's theta*
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shields_turbulent: Option<f64>,
+    /// DEM runs without fluid: granular temperature of the mobile particles at the end
+    /// (m^2/s^2), the last value of `theta_g` in `timeseries.csv`
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub granular_temperature: Option<f64>,
+    /// homogeneous cooling scenes: Haff's cooling time of the kinetic theory (s), from the
+    /// restitution, the packing and the initial temperature
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub haff_tau_s: Option<f64>,
+    /// homogeneous cooling scenes: cooling time fitted to the temperature history (s)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub haff_tau_fit_s: Option<f64>,
+    /// homogeneous cooling scenes: Haff's temperature T0 / (1 + t/tau)^2 at the end
+    /// (m^2/s^2)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub haff_granular_temperature: Option<f64>,
+    /// homogeneous cooling scenes: largest relative deviation |T / T_Haff - 1| over the
+    /// temperature samples (one per fluid period)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub haff_max_deviation: Option<f64>,
 }
 
 /// `manifest.json`: enough to reproduce the run.

@@ -85,6 +85,7 @@ impl Eulerian<'_> {
             bed_surface: output::finite(z1),
             residual: output::finite(self.residual()),
             steps: self.steps() as u64,
+            theta_g: None,
         }
     }
 
@@ -147,6 +148,7 @@ impl Eulerian<'_> {
             particles: None,
             particle_steps_per_s: None,
             shields_turbulent: None,
+            ..Summary::default()
         };
         // a column without moving grains (clear water) has no transport levels
         let layers = match (summary.bed_height, summary.transport_layer_thickness) {

@@ -7,6 +7,11 @@
 //! updates) has nothing to average: its profiles hold `z` only and its summary no
 //! transport figure (absent, not zero). A scene whose window is empty by construction
 //! (`end_time <= stats_start` with fluid) is refused at set-up.
+//!
+//! The standard error of qs comes from the blocking of its samples
+//! ([`super::stats::Blocking`]); the paragraph states its blocks, or why there is none. A
+//! run without fluid reports its granular temperature history instead of transport
+//! ([`super::stats::Cooling`]), with Haff's law beside it for a homogeneous cooling scene.
 
 use super::solver::Lagrangian;
 use crate::output::{self, finite, Profiles, Summary};
@@ -50,6 +55,13 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         p.push("nu_t", av.nu_t);
         p.push("beta", av.beta);
     }
+    let sample_period = m.dt() * m.fluid_every() as f64;
+    let blocked = if samples > 0 { Some(m.stats().qs.estimate()) } else { None };
+    let stderr = blocked.and_then(|b| b.ok()).and_then(|b| finite(b.stderr));
+    let fluid = m.config().settings.numerics.fluid != super::config::FluidMode::Off;
+    let cooling = &m.stats().cooling;
+    let dry = (!fluid && cooling.samples > 0).then_some(cooling);
+    let haff = m.haff_constant().filter(|_| dry.is_some());
     let mobile = m.mobile();
     let flow_wall = m.flow_wall();
     let throughput = (flow_wall > 0.0).then(|| mobile as f64 * m.steps() as f64 / flow_wall);
@@ -58,6 +70,8 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         solver: "lagrangian".into(),
         qs: transport.map(|t| t.0),
         qs_star: transport.and_then(|t| finite(scales.qs_star(t.0))),
+        qs_stderr: stderr,
+        qs_star_stderr: stderr.and_then(|e| finite(scales.qs_star(e))),
         shields: transport.and_then(|t| finite(scales.shields(t.1))),
         shields_nominal: scales.shields_nominal,
         bed_height: transport.and_then(|t| finite(t.3)),
@@ -66,6 +80,8 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         ending: ending.name().into(),
         sim_time_s: m.time(),
         steps: m.steps() as usize,
+        total_steps: Some((m.settle_steps() + m.steps()) as usize),
+        samples: Some(samples),
         rejected_steps: None,
         wall_time_s: wall,
         mass_error: None,
@@ -75,17 +91,53 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         particles: Some(mobile),
         particle_steps_per_s: throughput,
         shields_turbulent: transport.filter(|_| scales.stress > 0.0).and_then(|t| finite(scales.shields(t.2))),
+        granular_temperature: dry.and_then(|_| finite(m.particles().temperature())),
+        haff_tau_s: haff.and_then(|h| cooling.haff_tau(h)).and_then(finite),
+        haff_tau_fit_s: haff.and(cooling.fitted_tau()).and_then(finite),
+        haff_granular_temperature: haff.and_then(|h| cooling.haff_at(h, m.time())).and_then(finite),
+        haff_max_deviation: haff.and_then(|_| finite(cooling.max_deviation)),
     };
     let measured = match (summary.qs_star, summary.shields) {
+        (None, _) | (_, None) if samples > 0 => format!(
+            "qs = {:.4e} m^2/s{} (qs* and Shields undefined: no gravity or no density contrast to scale them)",
+            summary.qs.unwrap_or(0.0),
+            match (blocked, stderr) {
+                (Some(Ok(_)), Some(e)) => format!(" +- {e:.4e} (standard error, blocking)"),
+                (Some(Err(why)), _) => format!(" (no standard error: {why})"),
+                _ => String::new(),
+            }
+        ),
         (Some(q), Some(sh)) => {
             let layers = match (summary.bed_height, summary.transport_layer_thickness) {
                 (Some(b), Some(t)) => format!("bed surface {b:.4} m, transport layer {t:.4} m"),
                 _ => "no sediment transport".into(),
             };
+            let error = match (blocked, summary.qs_star_stderr) {
+                (Some(Ok(b)), Some(e)) => {
+                    let span = b.block_samples as f64 * sample_period;
+                    let correlation = b
+                        .inefficiency()
+                        .map(|s| {
+                            // statistical inefficiency = 2 x the integrated correlation time
+                            let tau = 0.5 * s * sample_period;
+                            format!(
+                                "; integrated correlation time of qs(t) {tau:.3} s, blocks {:.1} times longer",
+                                span / tau
+                            )
+                        })
+                        .unwrap_or_default();
+                    format!(
+                        " +- {e:.4} (standard error of the time average: Flyvbjerg-Petersen blocking of the {samples} qs samples, {} blocks of {} samples = {span:.3} s, the shortest blocks whose means pass Jonsson's lag-1 test{correlation})",
+                        b.blocks, b.block_samples
+                    )
+                }
+                (Some(Err(why)), _) => format!(" (no standard error: {why})"),
+                _ => String::new(),
+            };
             format!(
-                "qs* = {q:.4} (qs = {:.4e} m^2/s), Shields {sh:.3} (turbulent theta* {:.3}), {layers}",
+                "qs* = {q:.4}{error} (qs = {:.4e} m^2/s), Shields {sh:.3} (turbulent theta* {}), {layers}",
                 summary.qs.unwrap_or(0.0),
-                summary.shields_turbulent.unwrap_or(f64::NAN),
+                summary.shields_turbulent.map_or_else(|| "undefined".into(), |t| format!("{t:.3}")),
             )
         }
         _ => format!(
@@ -98,14 +150,19 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
             }
         ),
     };
+    let steady = steady_sentence(m, fluid);
+    let temperature = dry
+        .map(|c| cooling_sentence(c, haff, m.time(), summary.granular_temperature.unwrap_or(0.0)))
+        .unwrap_or_default();
     let mut text = format!(
-        "{}: {} after {:.3} s of flow ({} DEM steps of {:.3e} s after {} of deposition, {} neighbour-list builds, {} mobile particles, {samples} samples) in {:.1} s wall time ({:.2e} particle-steps/s); {measured}",
+        "{}: {} after {:.3} s of flow ({} DEM steps of {:.3e} s after {} of deposition, {} in all, {} neighbour-list builds, {} mobile particles, {samples} averaging samples) in {:.1} s wall time ({:.2e} particle-steps/s); {measured}; {steady}{temperature}",
         scene.meta.name,
         ending.name(),
         summary.sim_time_s,
         summary.steps,
         m.dt(),
         m.settle_steps(),
+        m.settle_steps() + m.steps(),
         m.dem().list().builds,
         mobile,
         wall,
@@ -116,4 +173,44 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         text.push_str(e);
     }
     RunReport { profiles: p, summary, text }
+}
+
+/// The steady test as the run met it: criterion, windows, last change against the
+/// tolerance.
+fn steady_sentence(m: &Lagrangian<'_>, fluid: bool) -> String {
+    if !fluid {
+        return "no steady test (it is on the transport rate, which a run without fluid does not measure)".into();
+    }
+    let st = m.steady();
+    let (window, tolerance, needed) = st.criterion();
+    let rule = format!(
+        "steady test: relative change of the mean transport rate between consecutive {window} s windows (from t = 0) within {tolerance} for {needed} consecutive windows"
+    );
+    match st.change() {
+        None => format!("{rule}: fewer than two complete windows, no change measured yet (not steady)"),
+        Some(c) => format!(
+            "{rule}: last change {c:.4} against {tolerance}, {} of {needed} consecutive windows within ({})",
+            st.streak().min(needed),
+            if st.is_steady() { "steady" } else { "not steady" }
+        ),
+    }
+}
+
+/// The temperature history of a run without fluid, which ends at `time` with the
+/// temperature `last`, and, for a cooling scene, Haff's law.
+fn cooling_sentence(c: &super::stats::Cooling, haff: Option<f64>, time: f64, last: f64) -> String {
+    let history = format!(
+        "; granular temperature {:.4e} -> {last:.4e} m^2/s^2 over {time:.3} s (column theta_g of timeseries.csv; {} samples, one per fluid period, for Haff's law)",
+        c.initial, c.samples
+    );
+    let comparison = match haff.and_then(|h| Some((c.haff_tau(h)?, c.haff_at(h, time)?))) {
+        Some((tau, predicted)) => format!(
+            "; Haff's law T0 / (1 + t/tau)^2: tau = {tau:.4} s from the kinetic theory, {} fitted; T at the end {:+.2} % from Haff's {predicted:.4e}, largest deviation {:.2} % over the samples",
+            c.fitted_tau().map_or_else(|| "none".into(), |t| format!("{t:.4} s")),
+            100.0 * (last / predicted - 1.0),
+            100.0 * c.max_deviation
+        ),
+        None => "; no Haff comparison: the scene is not a homogeneous cooling one (inelastic frictionless gas, no body force, triply periodic box)".into(),
+    };
+    history + &comparison
 }

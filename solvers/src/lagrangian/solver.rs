@@ -98,6 +98,9 @@ pub struct Lagrangian<'a> {
     pub(super) flow_wall: f64,
     /// wall-clock time of the flow before a restart (s)
     pub(super) flow_wall_before: f64,
+    /// Haff's constant sqrt(pi) d / (4 (1 - e^2) phi g0) (s m/s) of a homogeneous cooling
+    /// scene ([`super::stats::Cooling`]), `None` for any other
+    haff: Option<f64>,
 }
 
 impl<'a> Lagrangian<'a> {
@@ -211,7 +214,9 @@ impl<'a> Lagrangian<'a> {
             dem.body[0] = 0.0;
         }
         let v = |x: f64| vec![x; cells];
+        let haff = haff_constant(&cfg, &dem.p, flow_body, d);
         Ok(Self {
+            haff,
             scene,
             field: FluidField::at_rest(cells, dz, cfg.rough_height(d)),
             column,
@@ -301,6 +306,11 @@ impl<'a> Lagrangian<'a> {
     pub fn dt(&self) -> f64 {
         self.dem.dt()
     }
+    /// DEM steps per fluid period: the fluid updates, and the averaging samples, come at
+    /// the flow steps that are multiples of it.
+    pub fn fluid_every(&self) -> u64 {
+        self.fluid_every
+    }
     /// The DEM: particles, neighbour list, contact law.
     pub fn dem(&self) -> &Dem {
         &self.dem
@@ -356,6 +366,12 @@ impl<'a> Lagrangian<'a> {
     /// Particle diameter and density.
     pub fn material(&self) -> Material {
         self.mat
+    }
+    /// Haff's cooling time constant of a homogeneous cooling scene, sqrt(pi) d / (4 (1 -
+    /// e^2) phi g0) (s m/s; over sqrt(T0) it is the cooling time): a gas without fluid,
+    /// body force or friction in a triply periodic box; `None` for any other scene.
+    pub fn haff_constant(&self) -> Option<f64> {
+        self.haff
     }
 
     fn models(&self) -> DragModels<'a> {
@@ -508,7 +524,7 @@ impl<'a> Lagrangian<'a> {
                 Some(c) => c.shear_stress(),
                 None => &self.zero_faces,
             };
-            self.stats.add(&self.sums, &self.field.u, &self.tau_t, &self.field.nu_t, &self.beta, tau_face);
+            self.stats.add(&self.sums, &self.field.u, &self.tau_t, &self.field.nu_t, &self.beta, tau_face, qs);
         }
         Ok(())
     }
@@ -529,6 +545,11 @@ impl<'a> Lagrangian<'a> {
         // a fluid period of many thousand steps must not leave the state unchecked, nor the
         // driver (progress, Ctrl-C) waiting, for all of them
         let checkpoint = !update && self.steps.is_multiple_of(CHECK_STEPS);
+        if update && fluid == FluidMode::Off {
+            // the state at the start of the period, at its exact time: the first sample is
+            // the initial temperature Haff's law starts from
+            self.stats.cooling.add(self.time, self.dem.p.temperature(), self.haff);
+        }
         self.dem_step(update && fluid != FluidMode::Off);
         if update {
             let r = if fluid == FluidMode::Off { self.check() } else { self.fluid_update() };
@@ -577,4 +598,27 @@ impl<'a> Lagrangian<'a> {
     pub fn fluid_density(&self) -> f64 {
         self.rho_f
     }
+}
+
+/// sqrt(pi) d / (4 (1 - e^2) phi g0), Carnahan-Starling g0, for the scenes whose
+/// temperature Haff's law describes (see [`super::stats::Cooling`]): an inelastic,
+/// frictionless gas with neither fluid nor body force in a triply periodic box.
+fn haff_constant(cfg: &Config, p: &Particles, body: [f64; 3], d: f64) -> Option<f64> {
+    let s = &cfg.settings;
+    let n = &s.numerics;
+    let homogeneous = n.fluid == FluidMode::Off
+        && n.initial == Initial::Gas
+        && n.bottom == super::config::Bottom::Periodic
+        && !n.side_walls
+        && body == [0.0; 3]
+        && s.friction == 0.0
+        && s.restitution < 1.0;
+    if !homogeneous {
+        return None;
+    }
+    let volume = cfg.domain.length * cfg.domain.width * n.height;
+    let phi = p.n_mobile as f64 * setup::sphere_volume(d) / volume;
+    let g0 = (1.0 - 0.5 * phi) / (1.0 - phi).powi(3);
+    let e = s.restitution;
+    crate::output::finite(std::f64::consts::PI.sqrt() * d / (4.0 * (1.0 - e * e) * phi * g0)).filter(|h| *h > 0.0)
 }

@@ -105,11 +105,12 @@ impl Stepper for Lagrangian<'_> {
     /// The transport of the last fluid update (the particle sums it averaged), the largest
     /// fluid shear stress of the column, the level below which 1 % of that transport flows
     /// and the relative change of the steady-state windows. Without fluid there are no
-    /// averages: only the time and the steps.
+    /// averages: the time, the steps and the granular temperature of the particles.
     fn sample(&self) -> Sample {
         let mut s =
             Sample { time: self.time(), residual: self.steady().change(), steps: self.steps(), ..Sample::default() };
         if self.config().settings.numerics.fluid == FluidMode::Off {
+            s.theta_g = finite(self.particles().temperature());
             return s;
         }
         let mat = self.material();

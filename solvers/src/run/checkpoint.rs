@@ -33,8 +33,9 @@ use super::history::Cadence;
 pub const FILE: &str = "checkpoint.bin";
 /// First bytes of a checkpoint.
 const MAGIC: &[u8; 8] = b"SALTUSCP";
-/// Layout version of the file and of every saved state.
-pub const VERSION: u32 = 1;
+/// Layout version of the file and of every saved state (2: the DEM's statistics carry
+/// the blocking of qs and the temperature history).
+pub const VERSION: u32 = 2;
 
 /// What a checkpoint holds besides its framing.
 #[derive(Serialize, Deserialize)]

@@ -27,8 +27,8 @@ use super::{Ending, Phase, Sample, Stepper};
 
 /// File name of the time series.
 pub const TIMESERIES: &str = "timeseries.csv";
-/// Header of the time series.
-pub const TIMESERIES_HEADER: &str = "t,qs,qs_star,shields,bed_surface,residual,steps";
+/// Header of the time series (`theta_g`: DEM runs without fluid, empty for the others).
+pub const TIMESERIES_HEADER: &str = "t,qs,qs_star,shields,bed_surface,residual,steps,theta_g";
 /// Folder of the profile snapshots.
 pub const SNAPSHOTS: &str = "snapshots";
 /// Index of the snapshots in [`SNAPSHOTS`]: one row per snapshot.
@@ -224,7 +224,9 @@ impl Recorder {
             line.push(',');
             cell(line, x);
         }
-        let _ = writeln!(line, ",{}", s.steps);
+        let _ = write!(line, ",{},", s.steps);
+        cell(line, s.theta_g);
+        line.push('\n');
         self.cadence.last_steps = Some(s.steps);
         if on_cadence {
             self.cadence.rows += 1;

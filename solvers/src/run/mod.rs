@@ -179,6 +179,9 @@ pub struct Sample {
     pub residual: Option<f64>,
     /// steps of the flow
     pub steps: u64,
+    /// granular temperature of the mobile particles (m^2/s^2), for a DEM run without
+    /// fluid, where it is the history to report instead of transport
+    pub theta_g: Option<f64>,
 }
 
 /// What the observer tells the driver.
