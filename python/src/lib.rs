@@ -95,7 +95,7 @@ impl Place {
 /// error and its causes joined as anyhow's `{:#}` does.
 fn load_error(py: Python<'_>, e: Error) -> PyErr {
     let place = Place::of(&e);
-    let message = format!("{:#}", anyhow::Error::from(e));
+    let message = saltus::describe(&anyhow::Error::from(e));
     place.attach(py, SceneError::new_err(message))
 }
 

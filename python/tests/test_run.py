@@ -183,7 +183,7 @@ def test_an_unstable_run_returns_its_last_good_state(root, cli, tmp_path):
     assert r.breakdown["place"]["kind"] == "cell" and "reason" in r.breakdown
     assert r.summary["ending"] == "unstable" and "cell" in r.summary["error"]
     code, _, err = cli("run", CASE01, *sum((["--set", f"{k}={v}"] for k, v in sets.items()), []), "--out", str(tmp_path / "cli"))
-    assert code == 1, err
+    assert code == 3, err
     from_cli = json.loads((tmp_path / "cli" / "summary.json").read_text())
     from_cli.pop("wall_time_s")
     assert {k: v for k, v in r.summary.items() if k != "wall_time_s"} == from_cli
@@ -239,7 +239,8 @@ def test_other_threads_run_during_a_run(root):
             ticks.append(time.perf_counter())
             time.sleep(0.001)
 
-    sets = {"solver.eulerian.steady_tolerance": 0.0, "solver.eulerian.end_time": 1000.0}
+    # a run of a few tenths of a second: long against the ticks, whatever the machine
+    sets = {"solver.eulerian.steady_tolerance": 0.0, "solver.eulerian.end_time": 1.0e4}
     t = threading.Thread(target=count)
     t.start()
     try:
