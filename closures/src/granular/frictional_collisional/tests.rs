@@ -58,8 +58,10 @@ proptest! {
         if phi > 0.57 {
             prop_assert!(m.elastic_pressure(phi + dphi) > m.elastic_pressure(phi));
         }
+        // a central difference of step h has a relative error of order (h / (phi - 0.57))^2
+        // next to the onset, where the pressure grows from zero: test it 1e4 h away
         let h = 1e-7;
-        if phi - h > 0.57 || phi + h < 0.57 {
+        if (phi - 0.57).abs() > 1e-3 {
             let fd = (m.elastic_pressure(phi + h) - m.elastic_pressure(phi - h)) / (2.0 * h);
             let an = m.elastic_pressure_derivative(phi);
             prop_assert!((fd - an).abs() <= 1e-5 * an.abs().max(1e-12), "{} vs {}", fd, an);
