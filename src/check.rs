@@ -25,11 +25,9 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
 use saltus_core::closure::Family;
 use saltus_core::param::{number, Bound};
-use saltus_core::scene::{closure_from_value, to_toml_table};
-use saltus_core::{
-    ColumnView, Describe, DragLaw, EffectiveViscosity, FlowScales, Fluctuation, GranularStress, Hindrance, Limit,
-    Param, ParticleSlip, Turbulence, TurbulencePoint,
-};
+use saltus_core::{ColumnView, FlowScales, Limit, Param, ParticleSlip, Turbulence, TurbulencePoint};
+
+use crate::eval::AnyClosure;
 
 /// Parse a model given on the command line: `key = value` lines or an inline table
 /// `{ type = "...", ... }`.
@@ -128,58 +126,18 @@ impl std::fmt::Display for ChecksFailed {
 
 impl std::error::Error for ChecksFailed {}
 
-/// A model of any family, built from its table.
-enum Built {
-    Drag(Box<dyn DragLaw>),
-    Hindrance(Box<dyn Hindrance>),
-    Viscosity(Box<dyn EffectiveViscosity>),
-    Granular(Box<dyn GranularStress>),
-    Turbulence(Box<dyn Turbulence>),
-    Fluctuation(Box<dyn Fluctuation>),
-}
+/// A model of any family, built from its table as `--model` gives it.
+type Built = AnyClosure;
 
-impl Built {
-    fn new(family: Family, table: &toml::Table) -> anyhow::Result<Built> {
-        let v = toml::Value::Table(table.clone());
-        let (src, key) = (Path::new("--model"), "model");
-        Ok(match family {
-            Family::Drag => Built::Drag(closure_from_value(v, family, src, key)?),
-            Family::Hindrance => Built::Hindrance(closure_from_value(v, family, src, key)?),
-            Family::Viscosity => Built::Viscosity(closure_from_value(v, family, src, key)?),
-            Family::Granular => Built::Granular(closure_from_value(v, family, src, key)?),
-            Family::Turbulence => Built::Turbulence(closure_from_value(v, family, src, key)?),
-            Family::Fluctuation => Built::Fluctuation(closure_from_value(v, family, src, key)?),
-        })
-    }
-
-    fn describe(&self) -> &dyn Describe {
-        match self {
-            Built::Drag(m) => m.as_ref(),
-            Built::Hindrance(m) => m.as_ref(),
-            Built::Viscosity(m) => m.as_ref(),
-            Built::Granular(m) => m.as_ref(),
-            Built::Turbulence(m) => m.as_ref(),
-            Built::Fluctuation(m) => m.as_ref(),
-        }
-    }
-
-    fn to_toml(&self) -> Result<String, String> {
-        match self {
-            Built::Drag(m) => to_toml_table(m),
-            Built::Hindrance(m) => to_toml_table(m),
-            Built::Viscosity(m) => to_toml_table(m),
-            Built::Granular(m) => to_toml_table(m),
-            Built::Turbulence(m) => to_toml_table(m),
-            Built::Fluctuation(m) => to_toml_table(m),
-        }
-    }
+fn built(family: Family, table: &toml::Table) -> anyhow::Result<Built> {
+    AnyClosure::build(family, toml::Value::Table(table.clone()), Path::new("--model"), "model")
 }
 
 /// Run every check on `model` (a closure table with its `type`) of `family`. An error is
 /// bad input (unknown model, bad key or value), not a failed check.
 pub fn check(family: Family, model: toml::Value, opts: Options) -> anyhow::Result<Report> {
     let toml::Value::Table(table) = model else { anyhow::bail!("--model: expected a TOML table") };
-    let built = Built::new(family, &table)?;
+    let built = built(family, &table)?;
     let d = built.describe();
     d.validate().map_err(|e| anyhow::anyhow!("--model: {e}"))?;
     let space = ParamSpace { table: table.clone(), params: d.params() };
@@ -433,7 +391,7 @@ fn run_property<I: std::fmt::Debug + Clone>(
     let mut r = runner(opts.cases);
     let strategy = (space.strategy(), input);
     let result = r.run(&strategy, |(values, x)| {
-        let built = Built::new(family, &space.table_with(&values))
+        let built = built(family, &space.table_with(&values))
             .map_err(|e| TestCaseError::reject(format!("parameters refused: {e}")))?;
         if built.describe().validate().is_err() {
             return Err(TestCaseError::reject("constraint between parameters"));
@@ -468,7 +426,7 @@ fn round_trip(space: &ParamSpace, family: Family, opts: Options) -> Outcome {
         |m, _| {
             let text = m.to_toml()?;
             let table: toml::Table = text.parse().map_err(|e: toml::de::Error| format!("{e}\n{text}"))?;
-            let back = Built::new(family, &table).map_err(|e| format!("its own TOML is refused: {e:#}\n{text}"))?;
+            let back = built(family, &table).map_err(|e| format!("its own TOML is refused: {e:#}\n{text}"))?;
             let again = back.to_toml()?;
             if again != text {
                 return Err(format!("serialised twice differs:\n{text}\n---\n{again}"));

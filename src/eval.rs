@@ -8,7 +8,7 @@ use std::path::Path;
 use anyhow::{anyhow, bail, Context};
 use saltus_core::closure::Family;
 use saltus_core::registry;
-use saltus_core::scene::closure_from_value;
+use saltus_core::scene::{closure_from_value, to_toml_table};
 use saltus_core::{
     ColumnView, Describe, DragLaw, EffectiveViscosity, Field, FlowScales, Fluctuation, GranularStress, Hindrance,
     ParticleSlip, Turbulence, TurbulencePoint,
@@ -182,18 +182,61 @@ impl<'a> Rows<'a> {
     }
 }
 
-/// The closure object of one family, built and range-checked once.
+/// A closure of any scene family, built from its table and range-checked once: what
+/// `closure eval` evaluates ([`Model`]) and `closure check` examines.
 #[derive(Debug)]
-enum Kind {
+pub enum AnyClosure {
+    /// a drag law
     Drag(Box<dyn DragLaw>),
+    /// a hindrance factor
     Hindrance(Box<dyn Hindrance>),
+    /// an effective viscosity
     Viscosity(Box<dyn EffectiveViscosity>),
-    /// a local rheology (`as_local` is `Some`)
+    /// a granular stress: a local rheology or a kinetic-theory closure
     Granular(Box<dyn GranularStress>),
-    /// a kinetic-theory closure (`as_kinetic` is `Some`)
-    KineticTheory(Box<dyn GranularStress>),
+    /// a turbulence closure
     Turbulence(Box<dyn Turbulence>),
+    /// a fluctuation model
     Fluctuation(Box<dyn Fluctuation>),
+}
+
+impl AnyClosure {
+    /// Build `model` (a closure table with its `type`) of `family`. Errors name `file`
+    /// and the key path under `key`.
+    pub fn build(family: Family, model: toml::Value, file: &Path, key: &str) -> anyhow::Result<AnyClosure> {
+        Ok(match family {
+            Family::Drag => AnyClosure::Drag(closure_from_value(model, family, file, key)?),
+            Family::Hindrance => AnyClosure::Hindrance(closure_from_value(model, family, file, key)?),
+            Family::Viscosity => AnyClosure::Viscosity(closure_from_value(model, family, file, key)?),
+            Family::Granular => AnyClosure::Granular(closure_from_value(model, family, file, key)?),
+            Family::Turbulence => AnyClosure::Turbulence(closure_from_value(model, family, file, key)?),
+            Family::Fluctuation => AnyClosure::Fluctuation(closure_from_value(model, family, file, key)?),
+        })
+    }
+
+    /// The model's name, equation, source and parameters with their values.
+    pub fn describe(&self) -> &dyn Describe {
+        match self {
+            AnyClosure::Drag(m) => m.as_ref(),
+            AnyClosure::Hindrance(m) => m.as_ref(),
+            AnyClosure::Viscosity(m) => m.as_ref(),
+            AnyClosure::Granular(m) => m.as_ref(),
+            AnyClosure::Turbulence(m) => m.as_ref(),
+            AnyClosure::Fluctuation(m) => m.as_ref(),
+        }
+    }
+
+    /// The model as its TOML table (with `type`), as a scene would hold it.
+    pub fn to_toml(&self) -> Result<String, String> {
+        match self {
+            AnyClosure::Drag(m) => to_toml_table(m),
+            AnyClosure::Hindrance(m) => to_toml_table(m),
+            AnyClosure::Viscosity(m) => to_toml_table(m),
+            AnyClosure::Granular(m) => to_toml_table(m),
+            AnyClosure::Turbulence(m) => to_toml_table(m),
+            AnyClosure::Fluctuation(m) => to_toml_table(m),
+        }
+    }
 }
 
 /// One closure of an [`EvalFamily`], built from its TOML table and checked once, then
@@ -201,7 +244,7 @@ enum Kind {
 #[derive(Debug)]
 pub struct Model {
     family: EvalFamily,
-    kind: Kind,
+    kind: AnyClosure,
 }
 
 impl Model {
@@ -210,30 +253,18 @@ impl Model {
     pub fn build(family: EvalFamily, model: toml::Value, file: &Path, key: &str) -> anyhow::Result<Model> {
         let f = family.scene_family().ok_or_else(|| anyhow!("unknown family"))?;
         let origin = file.display();
-        let kind = match family {
-            EvalFamily::Drag => Kind::Drag(closure_from_value(model, f, file, key)?),
-            EvalFamily::Hindrance => Kind::Hindrance(closure_from_value(model, f, file, key)?),
-            EvalFamily::Viscosity => Kind::Viscosity(closure_from_value(model, f, file, key)?),
-            EvalFamily::Granular => {
-                let m: Box<dyn GranularStress> = closure_from_value(model, f, file, key)?;
-                if m.as_local().is_none() {
-                    bail!(
-                        "{origin}: `{}` is not a local rheology; evaluate its coefficients with --family kinetic_theory",
-                        m.name()
-                    );
-                }
-                Kind::Granular(m)
+        let kind = AnyClosure::build(f, model, file, key)?;
+        if let AnyClosure::Granular(m) = &kind {
+            if family == EvalFamily::Granular && m.as_local().is_none() {
+                bail!(
+                    "{origin}: `{}` is not a local rheology; evaluate its coefficients with --family kinetic_theory",
+                    m.name()
+                );
             }
-            EvalFamily::KineticTheory => {
-                let m: Box<dyn GranularStress> = closure_from_value(model, f, file, key)?;
-                if m.as_kinetic().is_none() {
-                    bail!("{origin}: `{}` is not a kinetic-theory closure (use frictional_collisional)", m.name());
-                }
-                Kind::KineticTheory(m)
+            if family == EvalFamily::KineticTheory && m.as_kinetic().is_none() {
+                bail!("{origin}: `{}` is not a kinetic-theory closure (use frictional_collisional)", m.name());
             }
-            EvalFamily::Turbulence => Kind::Turbulence(closure_from_value(model, f, file, key)?),
-            EvalFamily::Fluctuation => Kind::Fluctuation(closure_from_value(model, f, file, key)?),
-        };
+        }
         Ok(Model { family, kind })
     }
 
@@ -244,14 +275,7 @@ impl Model {
 
     /// The model's name, equation, source and parameters with their values.
     pub fn describe(&self) -> &dyn Describe {
-        match &self.kind {
-            Kind::Drag(m) => m.as_ref(),
-            Kind::Hindrance(m) => m.as_ref(),
-            Kind::Viscosity(m) => m.as_ref(),
-            Kind::Granular(m) | Kind::KineticTheory(m) => m.as_ref(),
-            Kind::Turbulence(m) => m.as_ref(),
-            Kind::Fluctuation(m) => m.as_ref(),
-        }
+        self.kind.describe()
     }
 
     /// The default instance of this model, as registered: its parameters' defaults.
@@ -270,14 +294,14 @@ impl Model {
         let origin = rows.origin;
         let mut out = Table::default();
         match &self.kind {
-            Kind::Drag(m) => {
+            AnyClosure::Drag(m) => {
                 let re = need(input, "re_p", family, origin)?;
                 check_reynolds(re, rows)?;
                 let mut cd = vec![0.0; n];
                 m.cd_batch(re, &mut cd);
                 out.push("cd", cd);
             }
-            Kind::Hindrance(m) => {
+            AnyClosure::Hindrance(m) => {
                 let phi = need(input, "phi", family, origin)?;
                 let re = need(input, "re_p", family, origin)?;
                 check_fraction(phi, rows)?;
@@ -286,14 +310,14 @@ impl Model {
                 m.factor_batch(phi, re, &mut f);
                 out.push("factor", f);
             }
-            Kind::Viscosity(m) => {
+            AnyClosure::Viscosity(m) => {
                 let phi = need(input, "phi", family, origin)?;
                 check_fraction(phi, rows)?;
                 let mut r = vec![0.0; n];
                 m.ratio_batch(phi, &mut r);
                 out.push("nu_ratio", r);
             }
-            Kind::Granular(m) => {
+            AnyClosure::Granular(m) if family != EvalFamily::KineticTheory => {
                 let local = m.as_local().ok_or_else(|| anyhow!("`{}` is not a local rheology", m.name()))?;
                 let x = need(input, local.control_name(), family, origin)?;
                 let mut mu = vec![0.0; n];
@@ -302,7 +326,7 @@ impl Model {
                 out.push("mu", mu);
                 out.push("phi", phi);
             }
-            Kind::KineticTheory(m) => {
+            AnyClosure::Granular(m) => {
                 let kt = m.as_kinetic().ok_or_else(|| anyhow!("`{}` is not a kinetic-theory closure", m.name()))?;
                 let phi = need(input, "phi", family, origin)?;
                 check_fraction(phi, rows)?;
@@ -315,7 +339,7 @@ impl Model {
                 out.push("f4", c.iter().map(|c| c.f4).collect());
                 out.push("e_eff", c.iter().map(|c| c.e_eff).collect());
             }
-            Kind::Turbulence(m) => {
+            AnyClosure::Turbulence(m) => {
                 let z = need(input, "z", family, origin)?;
                 let phi = need(input, "phi", family, origin)?;
                 let dudz = need(input, "dudz", family, origin)?;
@@ -333,7 +357,7 @@ impl Model {
                 out.push("l_m", lm);
                 out.push("nu_t", nut);
             }
-            Kind::Fluctuation(m) => {
+            AnyClosure::Fluctuation(m) => {
                 for f in m.needs().iter() {
                     let col = match f {
                         Field::Tke => "k",
