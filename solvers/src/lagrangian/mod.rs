@@ -1,6 +1,7 @@
 //! # Lagrangian solver: soft-sphere DEM coupled to the 1D fluid column (Maurin et al. 2015)
 
 pub mod averaging;
+pub mod blocking;
 mod checkpoint;
 pub mod config;
 pub mod contact;

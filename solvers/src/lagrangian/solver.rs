@@ -3,7 +3,6 @@
 //! driver's view of the run in [`super::stepper`].
 
 use std::borrow::Cow;
-use std::path::Path;
 use std::time::Instant;
 
 use saltus_core::scene::Scene;
@@ -85,7 +84,7 @@ pub struct Lagrangian<'a> {
     /// driver gave a folder
     pub(super) vtk: Option<super::vtk::Series>,
     /// why the first snapshot that failed was not written
-    vtk_error: Option<String>,
+    pub(super) vtk_error: Option<String>,
     pub(super) next_vtk: f64,
     pub(super) seed: u64,
     pub(super) zero_faces: Vec<f64>,
@@ -258,28 +257,6 @@ impl<'a> Lagrangian<'a> {
             forces,
             cfg,
         })
-    }
-
-    /// Write ParaView snapshots ([`super::vtk`]) into `dir` every
-    /// `solver.lagrangian.vtk_period` of flow time (if > 0).
-    pub fn set_vtk_dir(&mut self, dir: &Path) {
-        if self.cfg.settings.numerics.vtk_period > 0.0 {
-            // a restored run goes on with the snapshots its checkpoint lists
-            self.vtk = Some(match self.vtk.take() {
-                Some(series) => series.moved_to(dir),
-                None => super::vtk::Series::new(dir),
-            });
-        }
-    }
-
-    /// The snapshot series, when snapshots are written.
-    pub fn vtk_series(&self) -> Option<&super::vtk::Series> {
-        self.vtk.as_ref()
-    }
-
-    /// Why a snapshot was not written (the first failure), if one was not.
-    pub fn vtk_error(&self) -> Option<&str> {
-        self.vtk_error.as_deref()
     }
 
     /// The scene.
@@ -579,17 +556,6 @@ impl<'a> Lagrangian<'a> {
                     }
                     return None;
                 }
-            }
-        }
-    }
-
-    fn write_vtk(&mut self) {
-        let column = (self.cfg.settings.numerics.fluid != FluidMode::Off).then_some(&self.field);
-        if let Some(series) = self.vtk.as_mut() {
-            // a failed snapshot does not stop the run (the report tells it); the summary
-            // still tells the result
-            if let Err(e) = series.write(self.time, &self.dem.p, column) {
-                self.vtk_error.get_or_insert_with(|| e.to_string());
             }
         }
     }

@@ -261,6 +261,42 @@ impl Series {
     }
 }
 
+impl super::solver::Lagrangian<'_> {
+    /// Write ParaView snapshots ([`self`](super::vtk)) into `dir` every
+    /// `solver.lagrangian.vtk_period` of flow time (if > 0).
+    pub fn set_vtk_dir(&mut self, dir: &Path) {
+        if self.cfg.settings.numerics.vtk_period > 0.0 {
+            // a restored run goes on with the snapshots its checkpoint lists
+            self.vtk = Some(match self.vtk.take() {
+                Some(series) => series.moved_to(dir),
+                None => Series::new(dir),
+            });
+        }
+    }
+
+    /// The snapshot series, when snapshots are written.
+    pub fn vtk_series(&self) -> Option<&Series> {
+        self.vtk.as_ref()
+    }
+
+    /// Why a snapshot was not written (the first failure), if one was not.
+    pub fn vtk_error(&self) -> Option<&str> {
+        self.vtk_error.as_deref()
+    }
+
+    /// Write the snapshot of the present state; a failure is kept for the report.
+    pub(super) fn write_vtk(&mut self) {
+        let column = (self.cfg.settings.numerics.fluid != saltus_core::scene::FluidMode::Off).then_some(&self.field);
+        if let Some(series) = self.vtk.as_mut() {
+            // a failed snapshot does not stop the run (the report tells it); the summary
+            // still tells the result
+            if let Err(e) = series.write(self.time, &self.dem.p, column) {
+                self.vtk_error.get_or_insert_with(|| e.to_string());
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
