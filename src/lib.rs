@@ -37,6 +37,7 @@ pub fn describe(e: &anyhow::Error) -> String {
 pub mod check;
 pub mod cli;
 pub mod compare;
+pub mod diagnose;
 pub mod errors;
 pub mod eval;
 pub mod listing;

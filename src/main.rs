@@ -79,6 +79,25 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Hold granular closures against the averaged fields of a run: mu and phi against I or
+    /// K, g0 from the pressure, the dissipation, viscosity, heat flux and drag dissipation
+    /// of kinetic theory; predicted and measured side by side (CSV, PNG) with their RMS
+    /// difference (see docs/diagnostics.md).
+    Diagnose {
+        /// output folder of the run (holding profiles.csv and scene.toml)
+        dir: PathBuf,
+        /// closures to evaluate instead of the scene's: a TOML table (`type = "mu_i"`,
+        /// `{type = "mu_k", alpha = 0.5}`), a [closures.granular] table, named tables of
+        /// closures, or a file holding any of these (repeatable)
+        #[arg(long = "closures", value_name = "TOML_OR_FILE")]
+        closures: Vec<String>,
+        /// output folder (default: DIR/diagnose)
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// only cells with phi above this are used
+        #[arg(long, default_value_t = saltus::diagnose::PHI_MIN)]
+        phi_min: f64,
+    },
     /// Evaluate or plot closures on their own.
     Closure {
         #[command(subcommand)]
@@ -274,6 +293,13 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     report.runs.len()
                 );
             }
+        }
+        Command::Diagnose { dir, closures, out, phi_min } => {
+            let d = saltus::diagnose::diagnose(&dir, &closures, saltus::diagnose::Options { phi_min })?;
+            let out = out.unwrap_or_else(|| dir.join("diagnose"));
+            d.write(&out)?;
+            out!("{}", d.text());
+            outln!("outputs: {}", out.display());
         }
         Command::Closure { command } => match command {
             ClosureCommand::Eval { family, model, input, output, seed } => {

@@ -38,6 +38,17 @@ impl Table {
 
     /// Read a CSV whose first line names the columns; every cell must be a number.
     pub fn read_csv(reader: impl std::io::Read, origin: &str) -> anyhow::Result<Table> {
+        Self::read_csv_cells(reader, origin, false)
+    }
+
+    /// Read a run's `profiles.csv`: as [`Table::read_csv`], but an empty cell (a value
+    /// undefined there, see [`saltus_solvers::Profiles::to_csv`]) is read as NaN.
+    pub fn read_profiles_file(path: &Path) -> anyhow::Result<Table> {
+        let f = std::fs::File::open(path).with_context(|| format!("{}: cannot open", path.display()))?;
+        Self::read_csv_cells(f, &path.display().to_string(), true)
+    }
+
+    fn read_csv_cells(reader: impl std::io::Read, origin: &str, empty_is_undefined: bool) -> anyhow::Result<Table> {
         let mut rdr = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(reader);
         let names: Vec<String> = rdr
             .headers()
@@ -55,6 +66,10 @@ impl Table {
                 bail!("{origin}: row {} has {} cells, the header has {}", i + 2, rec.len(), names.len());
             }
             for (j, cell) in rec.iter().enumerate() {
+                if empty_is_undefined && cell.is_empty() {
+                    columns[j].push(f64::NAN);
+                    continue;
+                }
                 let v: f64 = cell.parse().with_context(|| {
                     format!("{origin}: row {}, column `{}`: `{cell}` is not a number", i + 2, names[j])
                 })?;

@@ -296,6 +296,24 @@ pub fn flux_levels_by(n: usize, face: impl Fn(usize) -> f64, q: impl Fn(usize) -
     (level(lo), level(hi))
 }
 
+/// d f / dz of a cell profile at its centres `z` (increasing): the central difference
+/// (f[i+1] - f[i-1]) / (z[i+1] - z[i-1]) inside, one-sided at the two ends (exact for a
+/// linear profile on any grid); zeros with fewer than two cells. The one gradient of
+/// written profiles, so that a run's `heat_flux` and `saltus diagnose`'s -kappa dT/dz
+/// difference the same way.
+pub fn profile_gradient(z: &[f64], f: &[f64]) -> Vec<f64> {
+    let n = z.len().min(f.len());
+    if n < 2 {
+        return vec![0.0; n];
+    }
+    (0..n)
+        .map(|i| {
+            let (a, b) = (i.saturating_sub(1), (i + 1).min(n - 1));
+            (f[b] - f[a]) / (z[b] - z[a])
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -306,6 +324,16 @@ mod tests {
         let q = [0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0];
         let (a, b) = flux_levels(&faces, &q, 0.01, 0.99);
         assert!((a - 2.04).abs() < 1e-12 && (b - 5.96).abs() < 1e-12, "{a} {b}");
+    }
+
+    #[test]
+    fn gradient_of_a_linear_profile_is_exact() {
+        let z = [0.1, 0.3, 0.4, 0.8];
+        let f: Vec<f64> = z.iter().map(|z| 2.0 - 3.0 * z).collect();
+        for g in profile_gradient(&z, &f) {
+            assert!((g + 3.0).abs() < 1e-12, "{g}");
+        }
+        assert_eq!(profile_gradient(&[1.0], &[2.0]), vec![0.0]);
     }
 
     #[test]

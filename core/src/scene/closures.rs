@@ -64,6 +64,18 @@ where
     closure_with(value, family, file, key, |_, _| ())
 }
 
+/// A granular closure table found at key path `key` of `file`, built as a scene builds
+/// `[closures.granular]`: what it does not set (restitution, friction) is inherited from
+/// `particles` before the range check.
+pub fn granular_from_value(
+    value: toml::Value,
+    particles: &Particles,
+    file: &Path,
+    key: &str,
+) -> Result<Box<dyn GranularStress>> {
+    closure_with(value, Family::Granular, file, key, |m: &mut Box<dyn GranularStress>, t| m.inherit(t, particles))
+}
+
 /// [`closure_from_value`] with `prepare` called on the model and its table between
 /// deserialisation and the range check (a granular closure inherits the grain's
 /// properties there).

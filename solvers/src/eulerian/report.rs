@@ -55,6 +55,63 @@ impl Eulerian<'_> {
         out
     }
 
+    /// The granular fields under the names of the DEM's averaged fields (see
+    /// `docs/diagnostics.md`), evaluated with the run's closure at the written cell state
+    /// so that `saltus diagnose` of this run finds the closure again: `gamma_dot` (the
+    /// cell shear rate of u_p), `inertial_number` (local rheologies; kinetic runs write it
+    /// already), `viscous_number`, `mu_eff` (the closure's stress over p_p at the cell
+    /// state: mu(X) of a local rheology, (rho_p d F2 sqrt(T) gamma_dot + mu_s p_el) / p_p
+    /// of kinetic theory, without the regularisation of the momentum step), `beta` (phi (1 -
+    /// phi) K, eq 2.10), and for kinetic theory `heat_flux` (-kappa dT/dz, eqs 2.18, 2.21),
+    /// `dissipation` (Gamma = rho_p / d F4' T^1.5, eq 2.22) and `drag_dissipation`
+    /// (J_int = -c_J beta T, eqs 2.25 / 3.13). Undefined values (p_p = 0) are NaN.
+    fn push_granular_fields(&self, p: &mut Profiles, p_p: &[f64]) {
+        let n = self.len();
+        let (c, co) = (self.c, &self.co);
+        let gamma = &co.gamma_p[..n];
+        let state = |i: usize| self.local_state(gamma[i], p_p[i]);
+        let defined = |x: f64| if x.is_finite() { x } else { f64::NAN };
+        let per_cell = |f: &dyn Fn(usize) -> f64| (0..n).map(f).map(defined).collect::<Vec<_>>();
+        p.push("gamma_dot", gamma.to_vec());
+        let mu_eff = match self.m.rheology {
+            Rheology::Local { model, .. } => {
+                p.push("inertial_number", per_cell(&|i| state(i).inertial_number()));
+                per_cell(&|i| if p_p[i] > 0.0 { model.friction(model.control_number(&state(i))) } else { f64::NAN })
+            }
+            Rheology::Kinetic { model: kt, .. } => {
+                let mu_s = kt.static_friction();
+                per_cell(&|i| {
+                    let st = self.s.temp[i].max(0.0).sqrt();
+                    let g = gamma[i];
+                    let coulomb = if g == 0.0 { 0.0 } else { mu_s * co.pres[i].p_el * g.signum() };
+                    (c.rho_p * c.d * co.coef[i].f2 * st * g + coulomb) / p_p[i]
+                })
+            }
+        };
+        p.push("viscous_number", per_cell(&|i| state(i).viscous_number()));
+        p.push("mu_eff", mu_eff);
+        p.push("beta", co.beta[..n].to_vec());
+        let Rheology::Kinetic { model: kt, .. } = self.m.rheology else { return };
+        let temp = &self.s.temp[..n];
+        let dtdz = output::profile_gradient(self.z(), temp);
+        p.push("heat_flux", per_cell(&|i| -co.kappa[i] * dtdz[i]));
+        p.push(
+            "dissipation",
+            per_cell(&|i| {
+                let t = temp[i].max(0.0);
+                c.rho_p / c.d * co.coef[i].f4 * t * t.sqrt()
+            }),
+        );
+        let cd_inf = self.m.drag.cd_inf();
+        p.push(
+            "drag_dissipation",
+            per_cell(&|i| {
+                let c_j = kt.drag_dissipation_factor(cd_inf, cd_inf / co.cd_ratio[i].max(1e-300));
+                -c_j * co.beta[i] * temp[i].max(0.0)
+            }),
+        );
+    }
+
     /// Fluid shear stress, viscous + turbulent, of cell `i` (Pa).
     fn fluid_shear_stress(&self, i: usize) -> f64 {
         let (s, co, c) = (&self.s, &self.co, self.c);
@@ -105,7 +162,7 @@ impl Eulerian<'_> {
             p.push("theta_g", self.temperature().to_vec());
         }
         p.push("w_p", derived.w_p);
-        p.push("p_p", derived.p_p);
+        p.push("p_p", derived.p_p.clone());
         p.push("tau_p", derived.tau_p);
         p.push("tau_f", derived.tau_f.clone());
         p.push("nu_t", self.eddy_viscosity().to_vec());
@@ -116,6 +173,7 @@ impl Eulerian<'_> {
         let q: Vec<f64> = phi.iter().zip(self.u_p()).map(|(a, b)| a * b).collect();
         p.push("q_s", q.clone());
         p.push(if self.is_kinetic() { "inertial_number" } else { "control_number" }, derived.control);
+        self.push_granular_fields(&mut p, &derived.p_p);
 
         let qs: f64 = q.iter().zip(self.dz()).map(|(q, h)| q * h).sum();
         let tau_max = derived.tau_f.iter().fold(0.0f64, |a, t| a.max(t.abs()));

@@ -1,0 +1,219 @@
+//! A kinetic-theory closure against a run (Chassagne et al. 2023 section 3): the radial
+//! distribution g0 extracted from the pressure against each radial-distribution model
+//! (eqs 2.19, 2.23, 3.1-3.3), the collisional dissipation (eq 2.22 with F4'), the shear
+//! viscosity and the heat flux against the transport coefficients (eqs 2.20-2.21, 3.7,
+//! 3.10), the drag dissipation against eqs 2.25 and 3.13.
+
+use saltus_closures::granular::kinetic::radial_distribution::carnahan_starling;
+use saltus_closures::granular::kinetic::{
+    ChialvoSundaresanFrictionG0, ChialvoSundaresanG0, DragDissipation, RadialDistribution,
+};
+use saltus_core::{KineticCoefficients, KineticTheory, SaltationInput};
+use saltus_solvers::inputs::{DragKernel, DragPoints};
+use saltus_solvers::output::profile_gradient;
+
+use super::comparison::Comparison;
+use super::fields::RunFields;
+
+/// What a kinetic closure's comparisons found besides the comparisons: the coefficient a
+/// of eq 3.2 fitted to the extracted g0, and the value eq 3.3 gives at the grains' mu_p.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct G0Fit {
+    /// least-squares a of g0 - g0_CS = a phi^2 / (phi_max - phi)^1.5 over the cells used
+    pub a: f64,
+    /// a(mu_p) of eq 3.3 with the paper's a0 = 0.58, a_max = 3.70, delta = 0.54
+    pub a_eq33: f64,
+    /// the grains' interparticle friction mu_p
+    pub mu_p: f64,
+    /// cells of the fit
+    pub cells: usize,
+}
+
+/// Largest share of p_p the closure's elastic pressure may carry in a cell whose g0 is
+/// extracted.
+pub const ELASTIC_SHARE_MAX: f64 = 0.5;
+
+/// A cell's state for the kinetic comparisons.
+struct Cell {
+    k: usize,
+    phi: f64,
+    p: f64,
+    t: f64,
+    coef: KineticCoefficients,
+}
+
+/// Every comparison of kinetic closure `kt` on the cells with phi > `phi_min`, p_p > 0,
+/// T > 0 and finite values, with the g0 fit.
+pub fn compare(
+    label: &str,
+    kt: &dyn KineticTheory,
+    f: &RunFields,
+    phi_min: f64,
+) -> anyhow::Result<(Vec<Comparison>, G0Fit)> {
+    let what = "a kinetic-theory closure";
+    let z = f.column("z", what)?;
+    let phi = f.column("phi", what)?;
+    let p = f.column("p_p", what)?;
+    let temp = f.column("theta_g", what)?;
+    let gamma = f.column("gamma_dot", "the shear viscosity")?;
+    let mu = f.friction("the shear viscosity")?;
+    let gamma_diss = f.column("dissipation", "the collisional dissipation")?;
+    let q = f.column("heat_flux", "the heat flux")?;
+    let j_int = f.column("drag_dissipation", "the drag dissipation")?;
+    let beta = f.column("beta", "the drag dissipation and the saltation correction")?;
+    let (u_f, u_p) = (f.column("u_f", "the drag dissipation")?, f.column("u_p", "the drag dissipation")?);
+    let w_p = f.optional("w_p");
+    let (rho_p, d) = (f.rho_p, f.d);
+    let salt = kt.saltation_enabled();
+    let cells: Vec<Cell> = (0..f.rows())
+        .filter(|&k| phi[k] > phi_min && p[k] > 0.0 && temp[k] > 0.0)
+        .filter(|&k| [z[k], phi[k], p[k], temp[k]].iter().all(|v| v.is_finite()))
+        .map(|k| {
+            // K of eq 2.10 from beta = phi (1 - phi) K, for the saltation correction (eq 3.6)
+            let s = SaltationInput {
+                sqrt_t: temp[k].sqrt(),
+                k_drag: beta[k] / (phi[k] * (1.0 - phi[k])),
+                particle_density: rho_p,
+                diameter: d,
+            };
+            let coef = kt.coefficients(phi[k], (salt && s.k_drag.is_finite()).then_some(&s));
+            Cell { k, phi: phi[k], p: p[k], t: temp[k], coef }
+        })
+        .collect();
+
+    let (mut out, fit) = radial_distribution(label, kt, f, &cells, z);
+
+    let mut c = Comparison::new(label, "Gamma", "Gamma [W/m^3]", "phi");
+    for cell in cells.iter().filter(|c| gamma_diss[c.k].is_finite()) {
+        let predicted = rho_p / d * cell.coef.f4 * cell.t * cell.t.sqrt();
+        c.push(z[cell.k], cell.phi, gamma_diss[cell.k], predicted);
+    }
+    out.push(c);
+
+    // the kinetic viscosity alone: cells without enduring-contact pressure (p_el = 0)
+    let mut c = Comparison::new(label, "viscosity F2", "eta / (rho_p d sqrt(T)) [-]", "phi");
+    for cell in &cells {
+        let (g, k) = (gamma[cell.k], cell.k);
+        if g == 0.0 || !g.is_finite() || !mu[k].is_finite() || kt.elastic_pressure(cell.phi) != 0.0 {
+            continue;
+        }
+        let measured = mu[k] * cell.p / (rho_p * d * cell.t.sqrt() * g);
+        c.push(z[k], cell.phi, measured, cell.coef.f2);
+    }
+    out.push(c);
+
+    let dtdz = profile_gradient(z, temp);
+    let mut c = Comparison::new(label, "heat flux", "q_z [W/m^2]", "phi");
+    let mut gradient = Vec::new();
+    for cell in cells.iter().filter(|c| q[c.k].is_finite() && dtdz[c.k].is_finite()) {
+        let kappa = rho_p * d * cell.coef.f3 * cell.t.sqrt();
+        c.push(z[cell.k], cell.phi, q[cell.k], -kappa * dtdz[cell.k]);
+        gradient.push(dtdz[cell.k]);
+    }
+    c.extra = vec![("dT/dz", gradient)];
+    out.push(c);
+
+    out.extend(drag_dissipation(label, f, &cells, [z, phi, u_f, u_p, beta, j_int], w_p)?);
+    Ok((out, fit))
+}
+
+/// g0 extracted from the pressure and held against the closure's own g0 and the library's
+/// models. With F1 = phi + 2 (1+e) phi^2 g0 (Garzo-Dufty, eq 2.19 and table 1) linear
+/// in g0, the measured F1 = (p_p - p_el) / (rho_p T) gives
+/// g0 = g0_closure (F1 - phi) / (F1_closure - phi): eq 3.1 with the closure's e and its
+/// elastic pressure p_el (0 below phi_rlp, where this is eq 3.1 exactly).
+fn radial_distribution(
+    label: &str,
+    kt: &dyn KineticTheory,
+    f: &RunFields,
+    cells: &[Cell],
+    z: &[f64],
+) -> (Vec<Comparison>, G0Fit) {
+    let phi_max = kt.phi_max();
+    let mu_p = f.scene.particles.friction;
+    let models: [(&'static str, RadialDistribution); 3] = [
+        ("g0 carnahan_starling", RadialDistribution::CarnahanStarling {}),
+        ("g0 chialvo_sundaresan", RadialDistribution::ChialvoSundaresan(ChialvoSundaresanG0::default())),
+        (
+            "g0 chialvo_sundaresan_friction",
+            RadialDistribution::ChialvoSundaresanFriction(ChialvoSundaresanFrictionG0::default()),
+        ),
+    ];
+    let mut own = Comparison::new(label, "g0 closure", "g0 [-]", "phi");
+    let mut library: Vec<Comparison> =
+        models.iter().map(|(name, _)| Comparison::new(label, name, "g0 [-]", "phi")).collect();
+    let (mut sxy, mut sxx, mut n) = (0.0, 0.0, 0);
+    for cell in cells {
+        let c = &cell.coef;
+        let p_el = kt.elastic_pressure(cell.phi);
+        // where enduring contacts carry most of the pressure, p_p - p_el is the difference
+        // of two nearly equal numbers: g0 is extracted where the collisions carry at
+        // least half of it
+        if p_el > ELASTIC_SHARE_MAX * cell.p {
+            continue;
+        }
+        let f1 = (cell.p - p_el) / (f.rho_p * cell.t);
+        let g0 = c.g0 * (f1 - cell.phi) / (c.f1 - cell.phi);
+        if !(g0.is_finite() && c.g0.is_finite() && cell.phi < phi_max) {
+            continue;
+        }
+        let zk = z[cell.k];
+        own.push(zk, cell.phi, g0, c.g0);
+        for (cmp, (_, m)) in library.iter_mut().zip(&models) {
+            cmp.push(zk, cell.phi, g0, m.g0(cell.phi, phi_max, mu_p));
+        }
+        let x = cell.phi * cell.phi / (phi_max - cell.phi).powf(1.5);
+        sxy += x * (g0 - carnahan_starling(cell.phi));
+        sxx += x * x;
+        n += 1;
+    }
+    let a_eq33 = RadialDistribution::default().coefficient_a(mu_p);
+    let fit = G0Fit { a: if sxx > 0.0 { sxy / sxx } else { f64::NAN }, a_eq33, mu_p, cells: n };
+    let mut out = vec![own];
+    out.extend(library);
+    (out, fit)
+}
+
+/// J_int measured (eq 2.30) against -c_J phi (1 - phi) K T = -c_J beta T with c_J = 3
+/// (eq 2.25) and c_J = 3 + 2 C_D^inf / C_D (eq 3.13), C_D of the scene's drag and
+/// hindrance at the cell's mean slip, Re_p = |u_f - u_p, w_p / (1 - phi)| d / nu_f as the
+/// Eulerian solver evaluates it.
+fn drag_dissipation(
+    label: &str,
+    f: &RunFields,
+    cells: &[Cell],
+    [z, phi, u_f, u_p, beta, j_int]: [&[f64]; 6],
+    w_p: Option<&[f64]>,
+) -> anyhow::Result<Vec<Comparison>> {
+    let cl = &f.scene.closures;
+    let (Some(drag), Some(hindrance)) = (cl.drag.as_deref(), cl.hindrance.as_deref()) else {
+        anyhow::bail!("{}: the scene has no drag or hindrance closure", f.profiles_path.display());
+    };
+    let kernel = DragKernel::new(drag, hindrance);
+    let used: Vec<&Cell> = cells
+        .iter()
+        .filter(|c| [beta[c.k], j_int[c.k], u_f[c.k], u_p[c.k]].iter().all(|v| v.is_finite()))
+        .collect();
+    let nu = f.scene.fluid.viscosity;
+    let (mut phis, mut re) = (Vec::with_capacity(used.len()), Vec::with_capacity(used.len()));
+    for c in &used {
+        let p = phi[c.k].clamp(0.0, 1.0 - 1e-12);
+        let w = w_p.map_or(0.0, |w| if w[c.k].is_finite() { w[c.k] } else { 0.0 });
+        let slip = (u_f[c.k] - u_p[c.k]).hypot(w / (1.0 - p));
+        phis.push(p);
+        re.push(slip * f.d / nu);
+    }
+    let mut points = DragPoints::new(used.len());
+    kernel.evaluate(&phis, &re, &mut points);
+    let cd_inf = drag.cd_inf();
+    let mut linear = Comparison::new(label, "J_int eq 2.25", "J_int [W/m^3]", "phi");
+    let mut quadratic = Comparison::new(label, "J_int eq 3.13", "J_int [W/m^3]", "phi");
+    for (i, c) in used.iter().enumerate() {
+        let cd = points.cd_re[i] / points.re_star[i];
+        let bt = beta[c.k] * c.t;
+        let zk = z[c.k];
+        linear.push(zk, c.phi, j_int[c.k], -DragDissipation::Linear.factor(cd_inf, cd) * bt);
+        quadratic.push(zk, c.phi, j_int[c.k], -DragDissipation::Quadratic.factor(cd_inf, cd) * bt);
+    }
+    Ok(vec![linear, quadratic])
+}
