@@ -406,7 +406,11 @@ pub fn parse_table(text: &str) -> anyhow::Result<toml::Table> {
 /// [`parse_table`] of a text that messages name `label`.
 pub fn parse_table_from(text: &str, label: &str) -> anyhow::Result<toml::Table> {
     let trimmed = text.trim();
-    let syntax = |e: toml::de::Error| anyhow!("{label}: TOML syntax error: {}", e.message());
+    // some errors (a key without a value) carry no message of their own, only the span
+    let syntax = |e: toml::de::Error| match e.message().trim() {
+        "" => anyhow!("{label}: TOML syntax error: {}", e.to_string().trim()),
+        m => anyhow!("{label}: TOML syntax error: {m}"),
+    };
     if !trimmed.starts_with('{') {
         return trimmed.parse().map_err(syntax);
     }
