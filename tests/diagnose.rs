@@ -116,7 +116,11 @@ fn mu_i_profiles() -> Table {
 #[test]
 fn synthetic_mu_i_profiles_recover_their_closure() {
     let s = scene("cases/chassagne2023/case01.toml", &[]);
-    let d = diagnose_with(mu_i_profiles(), s, &["[same]\ntype = \"mu_i\"\n[lower]\ntype = \"mu_i\"\nmu_s = 0.30\nmu_2 = 0.92"]);
+    let d = diagnose_with(
+        mu_i_profiles(),
+        s,
+        &["[same]\ntype = \"mu_i\"\n[lower]\ntype = \"mu_i\"\nmu_s = 0.30\nmu_2 = 0.92"],
+    );
     assert_vanishes(&d, "same", "mu(I)", 1e-14, 40);
     assert_vanishes(&d, "same", "phi(I)", 1e-14, 40);
     let lower = d.find("lower", "mu(I)").expect("lower");
@@ -131,8 +135,20 @@ fn synthetic_mu_i_profiles_recover_their_closure() {
 fn kinetic_profiles(kt: &dyn KineticTheory) -> Table {
     let (d, rho_p) = (6e-3, 2500.0);
     let n = 30;
-    let names =
-        ["z", "phi", "theta_g", "p_p", "gamma_dot", "mu_eff", "dissipation", "heat_flux", "beta", "drag_dissipation", "u_f", "u_p"];
+    let names = [
+        "z",
+        "phi",
+        "theta_g",
+        "p_p",
+        "gamma_dot",
+        "mu_eff",
+        "dissipation",
+        "heat_flux",
+        "beta",
+        "drag_dissipation",
+        "u_f",
+        "u_p",
+    ];
     let mut cols: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
     let dtdz = 2.0;
     for k in 0..n {
@@ -193,7 +209,8 @@ fn synthetic_kinetic_profiles_recover_their_closure() {
         assert_vanishes(&d, "same", q, 1e-12, 20);
     }
     assert_vanishes(&d, "same", "viscosity F2", 1e-12, 20);
-    let e_eff = |e: f64| FrictionalCollisional { restitution: e, ..FrictionalCollisional::default() }.effective_restitution();
+    let e_eff =
+        |e: f64| FrictionalCollisional { restitution: e, ..FrictionalCollisional::default() }.effective_restitution();
     let ratio = (1.0 - e_eff(0.9).powi(2)) / (1.0 - e_eff(0.7).powi(2));
     let gamma = d.find("elastic", "Gamma").expect("Gamma");
     assert!((gamma.relative_rms() - (1.0 - ratio)).abs() < 1e-12, "{} vs {}", gamma.relative_rms(), 1.0 - ratio);

@@ -190,10 +190,8 @@ fn drag_dissipation(
         anyhow::bail!("{}: the scene has no drag or hindrance closure", f.profiles_path.display());
     };
     let kernel = DragKernel::new(drag, hindrance);
-    let used: Vec<&Cell> = cells
-        .iter()
-        .filter(|c| [beta[c.k], j_int[c.k], u_f[c.k], u_p[c.k]].iter().all(|v| v.is_finite()))
-        .collect();
+    let used: Vec<&Cell> =
+        cells.iter().filter(|c| [beta[c.k], j_int[c.k], u_f[c.k], u_p[c.k]].iter().all(|v| v.is_finite())).collect();
     let nu = f.scene.fluid.viscosity;
     let (mut phis, mut re) = (Vec::with_capacity(used.len()), Vec::with_capacity(used.len()));
     for c in &used {

@@ -83,9 +83,9 @@ pub fn diagnose_fields(fields: &mut RunFields, closure_args: &[String], opts: Op
     for n in named {
         let model = n.closure.name().to_string();
         let (comparisons, g0_fit) = if let Some(local) = n.closure.as_local() {
-            (local::compare(&n.label, local, &fields, opts.phi_min)?, None)
+            (local::compare(&n.label, local, fields, opts.phi_min)?, None)
         } else if let Some(kt) = n.closure.as_kinetic() {
-            let (c, fit) = kinetic::compare(&n.label, kt, &fields, opts.phi_min)?;
+            let (c, fit) = kinetic::compare(&n.label, kt, fields, opts.phi_min)?;
             (c, Some(fit))
         } else {
             bail!("closure `{}` ({model}) is neither a local rheology nor a kinetic theory", n.label);
