@@ -111,6 +111,8 @@ fn diagnose_bad_input_is_a_clean_error_naming_the_file() {
     std::fs::write(&file, "answer = 42\n").unwrap();
     let err = assert_clean_failure(&saltus(&["diagnose", r, "--closures", file.to_str().unwrap()]));
     assert!(err.contains("closures.toml") && err.contains("answer"), "{err}");
+    let err = assert_clean_failure(&saltus(&["diagnose", r, "--closures", "no/such/closures.toml"]));
+    assert!(err.contains("no/such/closures.toml") && err.contains("no such closures file"), "{err}");
     let err = assert_clean_failure(&saltus(&["diagnose", r, "--phi-min", "2"]));
     assert!(err.contains("--phi-min"), "{err}");
 }

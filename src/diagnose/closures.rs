@@ -27,6 +27,8 @@ pub fn parse(arg: &str, particles: &Particles) -> anyhow::Result<Vec<Named>> {
     let (text, origin) = if path.is_file() {
         let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
         (text, path.display().to_string())
+    } else if arg.trim_end().ends_with(".toml") && !arg.contains('=') {
+        bail!("{arg}: no such closures file (--closures takes a TOML table or a file holding one)");
     } else {
         (arg.to_string(), "--closures".to_string())
     };
