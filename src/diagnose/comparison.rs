@@ -49,12 +49,17 @@ impl Comparison {
         }
     }
 
-    /// Add one cell.
-    pub fn push(&mut self, z: f64, x: f64, measured: f64, predicted: f64) {
+    /// Add one cell if its four numbers are finite (a prediction that diverges, e.g. at
+    /// phi_max, is no number to compare); returns whether it was added.
+    pub fn push(&mut self, z: f64, x: f64, measured: f64, predicted: f64) -> bool {
+        if ![z, x, measured, predicted].iter().all(|v| v.is_finite()) {
+            return false;
+        }
         self.z.push(z);
         self.x.push(x);
         self.measured.push(measured);
         self.predicted.push(predicted);
+        true
     }
 
     /// Number of cells compared.
@@ -168,7 +173,8 @@ mod tests {
         assert!((c.rms() - 0.1).abs() < 1e-15);
         assert!((c.relative_rms() - 0.1).abs() < 1e-15);
         assert!(c.relative_bias().abs() < 1e-15);
-        let empty = Comparison::new("m", "mu(I)", "-", "I");
+        let mut empty = Comparison::new("m", "mu(I)", "-", "I");
+        assert!(!empty.push(0.0, 0.1, 1.0, f64::INFINITY));
         assert!(empty.rms().is_nan() && empty.relative_rms().is_nan());
     }
 }

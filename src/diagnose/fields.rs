@@ -50,6 +50,10 @@ impl RunFields {
         let p = &scene.particles;
         let (d, rho_p) = (p.diameter, p.density);
         let eta_f = scene.fluid.density * scene.fluid.viscosity;
+        let rows = table.rows();
+        if let Some(name) = table.names.iter().zip(&table.columns).find(|(_, c)| c.len() != rows).map(|(n, _)| n) {
+            bail!("{}: column `{name}` does not have the {rows} rows of the first", profiles_path.display());
+        }
         let fields = RunFields { profiles_path, table, scene, d, rho_p, eta_f };
         fields.column("z", "every comparison")?;
         fields.column("phi", "every comparison")?;

@@ -42,8 +42,8 @@ struct Cell {
     coef: KineticCoefficients,
 }
 
-/// Every comparison of kinetic closure `kt` on the cells with phi > `phi_min`, p_p > 0,
-/// T > 0 and finite values, with the g0 fit.
+/// Every comparison of kinetic closure `kt` on the cells with `phi_min` < phi < phi_max
+/// (where the coefficients diverge), p_p > 0, T > 0 and finite values, with the g0 fit.
 pub fn compare(
     label: &str,
     kt: &dyn KineticTheory,
@@ -66,7 +66,7 @@ pub fn compare(
     let (rho_p, d) = (f.rho_p, f.d);
     let salt = kt.saltation_enabled();
     let cells: Vec<Cell> = (0..f.rows())
-        .filter(|&k| phi[k] > phi_min && p[k] > 0.0 && temp[k] > 0.0)
+        .filter(|&k| phi[k] > phi_min && phi[k] < kt.phi_max() && p[k] > 0.0 && temp[k] > 0.0)
         .filter(|&k| [z[k], phi[k], p[k], temp[k]].iter().all(|v| v.is_finite()))
         .map(|k| {
             // K of eq 2.10 from beta = phi (1 - phi) K, for the saltation correction (eq 3.6)
@@ -107,8 +107,9 @@ pub fn compare(
     let mut gradient = Vec::new();
     for cell in cells.iter().filter(|c| q[c.k].is_finite() && dtdz[c.k].is_finite()) {
         let kappa = rho_p * d * cell.coef.f3 * cell.t.sqrt();
-        c.push(z[cell.k], cell.phi, q[cell.k], -kappa * dtdz[cell.k]);
-        gradient.push(dtdz[cell.k]);
+        if c.push(z[cell.k], cell.phi, q[cell.k], -kappa * dtdz[cell.k]) {
+            gradient.push(dtdz[cell.k]);
+        }
     }
     c.extra = vec![("dT/dz", gradient)];
     out.push(c);

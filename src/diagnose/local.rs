@@ -24,7 +24,7 @@ pub fn compare(label: &str, model: &dyn LocalRheology, f: &RunFields, phi_min: f
     };
     let mut c_mu = Comparison::new(label, quantity_mu, "mu [-]", control);
     let mut c_phi = Comparison::new(label, quantity_phi, "phi [-]", control);
-    let (mut i_col, mut j_col) = (Vec::new(), Vec::new());
+    let (mut i_col, mut j_col): ([Vec<f64>; 2], [Vec<f64>; 2]) = Default::default();
     for k in 0..f.rows() {
         let usable = phi[k] > phi_min && p[k] > 0.0 && gamma[k] != 0.0;
         if !(usable && z[k].is_finite() && gamma[k].is_finite() && mu[k].is_finite() && p[k].is_finite()) {
@@ -35,13 +35,21 @@ pub fn compare(label: &str, model: &dyn LocalRheology, f: &RunFields, phi_min: f
         if !x.is_finite() {
             continue;
         }
-        c_mu.push(z[k], x, mu[k], model.friction(x));
-        c_phi.push(z[k], x, phi[k], model.packing(x));
-        i_col.push(s.inertial_number());
-        j_col.push(s.viscous_number());
+        let (i, j) = (s.inertial_number(), s.viscous_number());
+        if !(i.is_finite() && j.is_finite()) {
+            continue;
+        }
+        if c_mu.push(z[k], x, mu[k], model.friction(x)) {
+            i_col[0].push(i);
+            j_col[0].push(j);
+        }
+        if c_phi.push(z[k], x, phi[k], model.packing(x)) {
+            i_col[1].push(i);
+            j_col[1].push(j);
+        }
     }
-    for c in [&mut c_mu, &mut c_phi] {
-        c.extra = vec![("I", i_col.clone()), ("J", j_col.clone())];
+    for (c, (i, j)) in [&mut c_mu, &mut c_phi].into_iter().zip(i_col.into_iter().zip(j_col)) {
+        c.extra = vec![("I", i), ("J", j)];
     }
     Ok(vec![c_mu, c_phi])
 }
