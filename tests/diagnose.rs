@@ -243,3 +243,38 @@ fn g0_extracted_from_the_pressure_is_the_model_that_made_it() {
         }
     }
 }
+
+/// The same synthetic mu(I) profiles as a run folder on disk: `profiles.csv` as a run
+/// writes it (11 significant digits, an empty cell where a value is undefined, here two
+/// rows above the layer without pressure) and the resolved `scene.toml`. The undefined
+/// rows are not used, and the closure is found again to the precision of the file.
+#[test]
+fn a_run_folder_with_undefined_cells() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("diagnose_synthetic_folder");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let t = mu_i_profiles();
+    let mut p = saltus_solvers::Profiles::default();
+    for (name, c) in t.names.iter().zip(&t.columns) {
+        let mut c = c.clone();
+        // two rows of clear water: phi = 0, p_p = 0, mu_eff undefined
+        let top = c.last().copied().unwrap_or(0.0);
+        let extra = match name.as_str() {
+            "z" => [top + 6e-3, top + 12e-3],
+            "mu_eff" => [f64::NAN, f64::NAN],
+            "gamma_dot" => [1.0, 1.0],
+            _ => [0.0, 0.0],
+        };
+        c.extend(extra);
+        p.push(name, c);
+    }
+    let csv = p.to_csv();
+    assert!(csv.lines().last().unwrap().contains(",,"), "an undefined cell is empty: {csv}");
+    std::fs::write(dir.join("profiles.csv"), csv).unwrap();
+    let s = scene("cases/chassagne2023/case01.toml", &[]);
+    std::fs::write(dir.join("scene.toml"), s.to_toml().unwrap()).unwrap();
+    let d = saltus::diagnose::diagnose(&dir, &["type = \"mu_i\"".to_string()], Options::default()).expect("diagnose");
+    assert_eq!(d.cells, 42);
+    assert_vanishes(&d, "mu_i", "mu(I)", 1e-9, 40);
+    assert_eq!(d.find("mu_i", "mu(I)").unwrap().cells(), 40);
+}
