@@ -76,13 +76,13 @@ fn s_r_is_continuous_at_ks_plus_5_and_tends_to_kr_over_ks() {
     assert_relative_eq!(m.omega_bed(0.05, NU, 3e-3), 65.0 / 375.0 * 2500.0, max_relative = 1e-12);
 }
 
-/// The rough wall of eqs 34-35, evaluated by hand: the fixed bed of Revil-Baudard (case FB,
+/// The rough wall and in-bed omega of eqs 32-35, evaluated by hand: the fixed bed of Revil-Baudard (case FB,
 /// u* = 0.052 m/s, d = 3 mm, k_s = 2.5 d = 7.5 mm, nu = 1e-6): k_s+ = 390, fully rough,
 /// S_r = K_r/k_s+ (the exponential is e^-385), omega_bed = S_r u*^2/nu = 65/390 * 2704
 /// = 450.67 /s, imposed at the wall face; a transitional k_s+ = 10 (u* = 1/750 m/s) takes
 /// the blend K_r/10 + ((200/10)^2 - K_r/10) e^-5; a smooth k_s+ = 2 (200/2)^2.
 #[test]
-fn rough_wall_omega_is_eqs_34_35() {
+fn rough_wall_omega_is_eqs_32_35() {
     let m = KOmega { wall: KOmegaWall::Rough, ..KOmega::default() };
     assert_relative_eq!(m.omega_bed(0.052, NU, 3e-3), 65.0 / 390.0 * 0.052 * 0.052 / NU, max_relative = 1e-12);
     assert_relative_eq!(m.omega_bed(0.052, NU, 3e-3), 450.6667, max_relative = 1e-6);
@@ -95,6 +95,13 @@ fn rough_wall_omega_is_eqs_34_35() {
     assert_relative_eq!(m.omega_bed(u, NU, 3e-3), s_r * u * u / NU, max_relative = 1e-12);
     let u = 2.0 * NU / 7.5e-3;
     assert_relative_eq!(m.omega_bed(u, NU, 3e-3), 1e4 * u * u / NU, max_relative = 1e-12);
+    // eq 32: the step at phi_b = 0.55, (tanh(500 (phi - phi_b)) + 1)/2
+    assert_relative_eq!(m.gamma(0.55), 0.5, max_relative = 1e-15);
+    assert_relative_eq!(m.gamma(0.56), 0.5 * (5.0f64.tanh() + 1.0), max_relative = 1e-15);
+    // eqs 26 and 33 with drag in the bed: the relaxation still settles on Gamma omega_bed
+    let t = terms_of(&m, &[(0.58, 0.0, 1e-6, 40.0, 5e4, 0.0)]);
+    let steady = t.omega_source[0] / t.omega_sink[0];
+    assert_relative_eq!(steady, m.gamma(0.58) * m.omega_bed(0.05, NU, 3e-3), max_relative = 1e-12);
     // roughness and K_r scale as eq 35 says: twice K_r, twice omega_bed when fully rough
     let m2 = KOmega { k_r: 130.0, ..m.clone() };
     assert_relative_eq!(m2.omega_bed(0.052, NU, 3e-3), 2.0 * m.omega_bed(0.052, NU, 3e-3), max_relative = 1e-12);
