@@ -161,4 +161,12 @@ pub trait TwoEquation: Send + Sync {
     /// Uniform initial (k, omega) of a column of height `height` driven at the friction
     /// velocity `u_star`.
     fn initial_state(&self, u_star: f64, height: f64, nu: f64) -> (f64, f64);
+
+    /// Initial (k, omega) of a cell at volume fraction `phi` (`diameter` the particle
+    /// diameter): a closure may damp the turbulence of a packed bed at start-up; the
+    /// uniform [`TwoEquation::initial_state`] by default.
+    fn initial_state_at(&self, phi: f64, u_star: f64, height: f64, nu: f64, diameter: f64) -> (f64, f64) {
+        let _ = (phi, diameter);
+        self.initial_state(u_star, height, nu)
+    }
 }

@@ -384,18 +384,12 @@ impl FluidColumn {
         if !closures.turbulence.transported().is_empty() && two_equation.is_none() {
             return Err(ColumnError::Unsupported { model: closures.turbulence.name() });
         }
-        if let Some(model) = two_equation {
-            if let TopBoundary::Lid { velocity } = self.params.top {
-                return Err(ColumnError::InvalidParameter {
-                    name: "top",
-                    value: velocity,
-                    reason: "a lid has no wall treatment for k and omega; use a free surface or a symmetry plane",
-                });
-            }
-            if self.kw.is_none() {
-                let (u_star, h) = (self.forcing_friction_velocity(), self.op.grid().height());
-                self.kw = Some(KOmegaRun::new(model, n, u_star, h, self.params.viscosity));
-            }
+        if let (Some(_), TopBoundary::Lid { velocity }) = (two_equation, self.params.top) {
+            return Err(ColumnError::InvalidParameter {
+                name: "top",
+                value: velocity,
+                reason: "a lid has no wall treatment for k and omega; use a free surface or a symmetry plane",
+            });
         }
         for (field, s) in [("phi", c.phi), ("beta", c.beta), ("u_p", c.u_p)] {
             if s.len() != n {
@@ -417,6 +411,12 @@ impl FluidColumn {
         self.phi.copy_from_slice(c.phi);
         self.beta.copy_from_slice(c.beta);
         self.u_p.copy_from_slice(c.u_p);
+        if let (Some(model), None) = (two_equation, &self.kw) {
+            // started from the first coupling's phi: a packed bed starts without turbulence
+            let (u_star, h) = (self.forcing_friction_velocity(), self.op.grid().height());
+            let p = &self.params;
+            self.kw = Some(KOmegaRun::new(model, &self.phi, u_star, h, p.viscosity, p.diameter));
+        }
         closures.viscosity.ratio_batch(&self.phi, &mut self.ratio);
         if let Some(i) = self.ratio.iter().position(|r| !(r.is_finite() && *r > 0.0)) {
             return Err(self.invalid(

@@ -112,10 +112,16 @@ pub struct KOmegaRun {
 }
 
 impl KOmegaRun {
-    /// The closure's initial state over `n` cells of a column of height `height`.
-    pub fn new(model: &dyn TwoEquation, n: usize, u_star: f64, height: f64, nu_f: f64) -> Self {
-        let (k0, w0) = model.initial_state(u_star, height, nu_f);
-        Self { col: KOmegaColumn::new(n, k0, w0), drag: vec![0.0; n], dphidz: vec![0.0; n] }
+    /// The closure's initial state ([`TwoEquation::initial_state_at`]) in each cell of
+    /// volume fraction `phi` of a column of height `height`, particles of `diameter`.
+    pub fn new(model: &dyn TwoEquation, phi: &[f64], u_star: f64, height: f64, nu_f: f64, diameter: f64) -> Self {
+        let n = phi.len();
+        let mut col = KOmegaColumn::new(n, 0.0, 0.0);
+        for ((k, w), &p) in col.k.iter_mut().zip(col.omega.iter_mut()).zip(phi) {
+            (*k, *w) = model.initial_state_at(p, u_star, height, nu_f, diameter);
+        }
+        col.save();
+        Self { col, drag: vec![0.0; n], dphidz: vec![0.0; n] }
     }
 
     /// One backward-Euler step of k and omega (Cheng et al. eqs 21-35) with the shear rate

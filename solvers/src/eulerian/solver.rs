@@ -179,7 +179,7 @@ impl<'a> Eulerian<'a> {
         let mass0 = phi.iter().zip(dz).map(|(p, h)| p * h).sum();
         // the fluid above the initial bed carries the driving (at least the top cell)
         let u_star = friction_velocity(c.grad / c.rho_f + c.gx, d.water_depth.max(dz[n - 1]));
-        let kw = two_equation.map(|model| KOmegaRun::new(model, n, u_star, height, c.nu_f));
+        let kw = two_equation.map(|model| KOmegaRun::new(model, &phi, u_star, height, c.nu_f, c.d));
         let k_omega_physics = KOmegaPhysics {
             nu_f: c.nu_f,
             diameter: c.d,
