@@ -1,5 +1,6 @@
 //! Fluid velocity fluctuations seen by particles (family `fluctuation`): none, Maurin's
-//! discrete random walk and Cheng's eddy interaction model.
+//! discrete random walk, Cheng's eddy interaction model and the gradient
+//! diffusion of a Schmidt number (Chassagne eq 4.4).
 //!
 //! Random numbers come only from the caller's seeded [`saltus_core::rng::Rng`]; each model
 //! documents how many it consumes per draw and in which order.
@@ -7,10 +8,12 @@
 pub mod drw;
 pub mod eim;
 pub mod none;
+pub mod schmidt;
 
 pub use drw::DiscreteRandomWalk;
 pub use eim::EddyInteraction;
 pub use none::NoFluctuation;
+pub use schmidt::Schmidt;
 
 #[cfg(test)]
 pub(crate) mod sim {
