@@ -15,6 +15,34 @@ pub use eim::EddyInteraction;
 pub use none::NoFluctuation;
 pub use schmidt::Schmidt;
 
+use saltus_core::{DriftForm, Params};
+use serde::{Deserialize, Serialize};
+
+/// Mean-field form of the drift of a random-walk model (key `mean_field` of `eim` and
+/// `drw`), see [`DriftForm`]. Default `ito`: the draws of these models hold a velocity and a
+/// duration fixed where the eddy is drawn, whose diffusion limit is the flux
+/// -d(D phi)/dz; `gradient` gives Chassagne's eq 4.4, -D dphi/dz, the well-mixed form a
+/// random walk corrected for the gradient of D would have.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq, Params)]
+#[serde(rename_all = "snake_case")]
+pub enum MeanField {
+    /// flux -d(D phi)/dz, the diffusion limit of the draws
+    #[default]
+    Ito,
+    /// flux -D dphi/dz (Chassagne eq 4.4)
+    Gradient,
+}
+
+impl MeanField {
+    /// The solver's form of this choice.
+    pub fn form(self) -> DriftForm {
+        match self {
+            Self::Ito => DriftForm::Ito,
+            Self::Gradient => DriftForm::Gradient,
+        }
+    }
+}
+
 #[cfg(test)]
 pub(crate) mod sim {
     //! Shared helper of the diffusivity tests: a tracer random walk driven by a model's
