@@ -8,6 +8,9 @@ use saltus_core::{
 };
 use serde::{Deserialize, Serialize};
 
+use super::MeanField;
+use saltus_core::DriftForm;
+
 /// Turbulent diffusivity of the particles from the eddy viscosity and a Schmidt number
 ///
 /// D = nu_t / Sc, the drift velocity u_d = (nu_t / Sc) grad(phi) / phi of Chassagne et al.
@@ -16,7 +19,9 @@ use serde::{Deserialize, Serialize};
 /// * Source: Chassagne, Bonamy & Chauchat 2023 eqs 4.3-4.4 (Sc = 1/3 there); Cheng,
 ///   Chauchat, Hsu & Calantoni eq 40 and section 4.1 (their EIM gives Sc = 1.5-0.65 in sheet
 ///   flow, 0.44 measured).
-/// * Defaults: `sc = 1/3` (Chassagne eq 4.4).
+/// * Defaults: `sc = 1/3` (Chassagne eq 4.4), `mean_field = "gradient"` (the flux
+///   -D dphi/dz of eq 4.4; `ito` gives -d(D phi)/dz, the diffusion limit of the draws
+///   below, see [`MeanField`]).
 /// * Valid range: `sc` in (0, 10]. Needs the eddy viscosity (mean-field face) and the
 ///   Reynolds shear stress (particle face): `mixing_length`, `parabolic` or `k_omega`.
 ///
@@ -42,11 +47,14 @@ pub struct Schmidt {
     /// Schmidt number Sc = nu_t / D
     #[param(range = "(0, 10]", unit = "-")]
     pub sc: f64,
+    /// mean-field form of the drift: `gradient` (Chassagne eq 4.4) or `ito` (the diffusion
+    /// limit of this model's draws)
+    pub mean_field: MeanField,
 }
 
 impl Default for Schmidt {
     fn default() -> Self {
-        Self { sc: 1.0 / 3.0 }
+        Self { sc: 1.0 / 3.0, mean_field: MeanField::Gradient }
     }
 }
 
@@ -65,6 +73,10 @@ impl Fluctuation for Schmidt {
         }
         let s = r.sqrt();
         FluctuationDraw { u: [s * n[0], s * n[1], s * n[2]], duration: e * nu / (self.sc * r) }
+    }
+
+    fn drift_form(&self) -> DriftForm {
+        self.mean_field.form()
     }
 
     fn diffusivity(&self, t: &TurbulencePoint, _s: &FlowScales) -> f64 {
@@ -92,7 +104,7 @@ mod tests {
 
     #[test]
     fn diffusivity_is_nu_t_over_sc() {
-        let m = Schmidt { sc: 0.7 };
+        let m = Schmidt { sc: 0.7, ..Schmidt::default() };
         assert_relative_eq!(m.diffusivity(&point(), &FlowScales::default()), 1e-3 / 0.7, max_relative = 1e-15);
         assert_relative_eq!(
             Schmidt::default().diffusivity(&point(), &FlowScales::default()),
@@ -135,8 +147,8 @@ mod tests {
 
     #[test]
     fn validate_names_the_key() {
-        assert_eq!(Schmidt { sc: 0.0 }.validate().unwrap_err().key, "sc");
-        assert_eq!(Schmidt { sc: 11.0 }.validate().unwrap_err().key, "sc");
+        assert_eq!(Schmidt { sc: 0.0, ..Schmidt::default() }.validate().unwrap_err().key, "sc");
+        assert_eq!(Schmidt { sc: 11.0, ..Schmidt::default() }.validate().unwrap_err().key, "sc");
         assert!(Schmidt::default().validate().is_ok());
         assert_eq!(Schmidt::default().needs(), Needs::of(&[Field::EddyViscosity, Field::ReynoldsStress]));
     }
@@ -145,7 +157,7 @@ mod tests {
         #[test]
         fn diffusivity_scales_inversely_with_sc(nu in 0.0f64..1.0, sc in 0.01f64..10.0) {
             let tp = TurbulencePoint { nu_t: nu, ..TurbulencePoint::default() };
-            let d = Schmidt { sc }.diffusivity(&tp, &FlowScales::default());
+            let d = Schmidt { sc, ..Schmidt::default() }.diffusivity(&tp, &FlowScales::default());
             prop_assert!(d.is_finite() && d >= 0.0);
             prop_assert!((d * sc - nu).abs() <= 1e-12 * nu.max(1e-300));
         }
