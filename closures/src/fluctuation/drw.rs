@@ -22,8 +22,8 @@ use saltus_core::DriftForm;
 ///   fluid velocity).
 /// * Defaults: `period` absent, i.e. tau_t = [`FlowScales::depth`] /
 ///   |[`FlowScales::bulk_velocity`]|. Give `period` (s) to impose a fixed redraw period.
-///   `mean_field = "ito"`: the flux of the mean-field face is -d(D phi)/dz, the diffusion
-///   limit of draws whose amplitude is set where they are drawn ([`MeanField`]).
+///   `mean_field = "gradient"` (Chassagne eq 4.4); `ito` gives the flux -d(D phi)/dz, the
+///   diffusion limit of draws whose amplitude is set where they are drawn ([`MeanField`]).
 /// * Valid range: `period` > 0 when given. Needs the Reynolds shear stress
 ///   ([`TurbulencePoint::reynolds_stress`], already R_xz/(rho_f eps)), e.g. from
 ///   `mixing_length`; refused on laminar flow.

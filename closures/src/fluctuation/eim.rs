@@ -21,7 +21,7 @@ use saltus_core::DriftForm;
 /// * Source: Cheng, Chauchat, Hsu & Calantoni, section 2.4, eqs 36-37 (C_t = 1/6 of the
 ///   eddy life time, section 2.3; C_mu from their table 1).
 /// * Defaults: `c0 = 3` (Cheng's calibration on dilute suspension, confirmed on sheet
-///   flow), `c_mu = 0.09` (table 1), `mean_field = "ito"`.
+///   flow), `c_mu = 0.09` (table 1), `mean_field = "gradient"` (see [`MeanField`]).
 /// * Valid range: `c0` in (0, 20], `c_mu` in (0, 1]. Needs k and omega from the turbulence
 ///   closure (refused with `mixing_length` or `laminar`).
 ///
@@ -42,8 +42,8 @@ use saltus_core::DriftForm;
 ///
 /// Mean-field form ([`MeanField`]): the draws hold a velocity of variance 2k/3 and a
 /// lifetime of mean C0 T_l both set where the eddy is drawn, so their diffusion limit is
-/// the flux -d(D phi)/dz (`ito`, the default), not -D dphi/dz (`gradient`, Chassagne eq
-/// 4.4): a particle leaves a strongly turbulent region faster than it enters it, and
+/// the flux -d(D phi)/dz (`ito`), not -D dphi/dz (`gradient`, Chassagne eq 4.4, the
+/// default): a particle leaves a strongly turbulent region faster than it enters it, and
 /// collects where D is small (near a wall). In Cheng's dilute channel (k-omega, C0 = 3) the
 /// two forms give Rouse numbers of about 1.06 and 0.58 (docs/benchmarks.md).
 ///
@@ -77,7 +77,7 @@ pub struct EddyInteraction {
 
 impl Default for EddyInteraction {
     fn default() -> Self {
-        Self { c0: 3.0, c_mu: 0.09, mean_field: MeanField::Ito }
+        Self { c0: 3.0, c_mu: 0.09, mean_field: MeanField::Gradient }
     }
 }
 
