@@ -105,8 +105,7 @@ fn muste_ns1_rouse_number_within_ten_percent_of_cheng() {
 #[test]
 fn kiger_pan_rouse_number_falls_with_c0() {
     let rel = "cases/cheng/dilute_kiger_pan.toml";
-    let ro: Vec<f64> =
-        (1..=4).map(|c| rouse_number(rel, &[&format!("closures.fluctuation.c0={c}")])).collect();
+    let ro: Vec<f64> = (1..=4).map(|c| rouse_number(rel, &[&format!("closures.fluctuation.c0={c}")])).collect();
     assert!(ro.windows(2).all(|w| w[1] < w[0]), "Rouse numbers over C0 = 1-4: {ro:?}");
     let gradient = rouse_number(rel, &["closures.fluctuation.mean_field=\"gradient\""]);
     assert!(gradient < ro[2], "gradient {gradient} against Ito {}", ro[2]);
