@@ -118,10 +118,10 @@ impl Eulerian<'_> {
             self.sc.work[i] = self.s.phi[i] - dt / dzi * (self.s.flux[i + 1] - self.s.flux[i]);
         }
         if self.m.fluctuation.is_some() {
-            for j in 1..n {
-                // the drift part of the flux of the new phi, as the flux itself
+            // the drift part of the flux of the new phi, as the flux itself
+            for (j, &h) in hs.iter().enumerate().take(n).skip(1) {
                 let (dl, dr) = (self.sc.drift_lr[2 * j], self.sc.drift_lr[2 * j + 1]);
-                self.s.drift_flux[j] = (dl * self.sc.work[j - 1] - dr * self.sc.work[j]) / hs[j];
+                self.s.drift_flux[j] = (dl * self.sc.work[j - 1] - dr * self.sc.work[j]) / h;
             }
         }
         let phi_max = self.m.rheology.phi_max();
