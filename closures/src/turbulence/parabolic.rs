@@ -4,24 +4,28 @@ use saltus_core::closure::Family;
 use saltus_core::{register_model, ColumnView, Describe, Field, Needs, Turbulence};
 use serde::{Deserialize, Serialize};
 
-/// Parabolic eddy viscosity
+/// Parabolic eddy viscosity through its mixing length
 ///
-/// nu_t = kappa u* z (1 - z/h) for 0 < z < h, 0 elsewhere; the mixing length that gives it
-/// with the linear stress u*^2 (1 - z/h) of the log layer is l_m = kappa z sqrt(1 - z/h).
+/// l_m = kappa z sqrt(1 - z/h), nu_t = l_m^2 |du/dz|: in a uniform channel, where the stress
+/// u*^2 (1 - z/h) is carried by the eddies (nu_t >> nu), du/dz = u*/(kappa z) and
+/// nu_t = kappa u* z (1 - z/h) ([`Parabolic::at`]), the parabola of the Rouse profile.
 ///
 /// * Source: the eddy viscosity of Rouse (1937) behind Cheng, Chauchat, Hsu & Calantoni
 ///   eq 38 (the Rouse profile) and VERIFICATION.md benchmark 3; the product of the linear
 ///   stress and the log-law shear rate u*/(kappa z).
 /// * Defaults: `kappa = 0.41`, `friction_velocity = 0.05`, `depth = 0.1` (the scales of
 ///   `cases/verification/rouse_parabolic.toml`; a scene of another flow gives its own).
-/// * Valid range: `friction_velocity` > 0 (m/s), `depth` > 0 (m) measured from the bottom
-///   of the column (z = 0), `kappa` in (0, 1].
+/// * Valid range: `friction_velocity` > 0 (m/s; it enters [`Parabolic::at`], the target
+///   parabola, not the mixing length), `depth` > 0 (m) measured from the bottom of the
+///   column (z = 0), `kappa` in (0, 1]. The parabola holds where the flow is the uniform
+///   channel of that u* and h and nu_t >> nu (z+ >> 10): a verification closure for the
+///   Rouse balance (VERIFICATION.md benchmark 3), not a model of a developing flow.
 ///
 /// Decisions:
-/// * The profile is prescribed, not computed from the flow: [`Turbulence::eddy_viscosity`]
-///   ignores the shear rate. It is a verification closure (a known nu_t for the Rouse
-///   balance), not a model of a developing flow.
-/// * Above z = h (a column taller than `depth`) nu_t = 0.
+/// * Through the mixing length, not prescribed, so that nu_t = l_m^2 |du/dz| as for every
+///   turbulence closure (the point and column forms agree, and nu_t vanishes with the
+///   shear). The viscous share lowers nu_t by about nu/2 near the wall: 0.5 % at z+ = 100.
+/// * Above z = h (a column taller than `depth`) l_m = 0.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
 #[describe(
@@ -48,7 +52,8 @@ impl Default for Parabolic {
 }
 
 impl Parabolic {
-    /// nu_t at height `z` (m^2/s).
+    /// The parabola kappa u* z (1 - z/h) at height `z` (m^2/s), the nu_t of the uniform
+    /// channel.
     #[inline]
     pub fn at(&self, z: f64) -> f64 {
         let x = z / self.depth;
@@ -69,12 +74,6 @@ impl Turbulence for Parabolic {
     fn mixing_length(&self, col: &ColumnView<'_>, out: &mut [f64]) {
         for (o, &z) in out.iter_mut().zip(col.z) {
             *o = self.kappa * z * (1.0 - z / self.depth).clamp(0.0, 1.0).sqrt();
-        }
-    }
-
-    fn eddy_viscosity(&self, col: &ColumnView<'_>, out: &mut [f64]) {
-        for (o, &z) in out.iter_mut().zip(col.z) {
-            *o = self.at(z);
         }
     }
 }
@@ -116,7 +115,7 @@ mod tests {
         let mut nu = [0.0; 3];
         m.eddy_viscosity(&col, &mut nu);
         for i in 0..3 {
-            assert_relative_eq!(l[i] * l[i] * dudz[i], nu[i], max_relative = 1e-12);
+            assert_relative_eq!(nu[i], m.at(z[i]), max_relative = 1e-12);
         }
     }
 
