@@ -1,4 +1,5 @@
-//! Prescribed parabolic eddy viscosity of a uniform open-channel flow (the Rouse benchmark).
+//! Parabolic eddy viscosity of a uniform open-channel flow, through its mixing length (the
+//! Rouse benchmark).
 
 use saltus_core::closure::Family;
 use saltus_core::{register_model, ColumnView, Describe, Field, Needs, Turbulence};
