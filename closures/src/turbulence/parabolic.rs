@@ -32,7 +32,7 @@ use serde::{Deserialize, Serialize};
 #[describe(
     name = "parabolic",
     source = "Rouse 1937 (Cheng et al. eq 38); VERIFICATION.md benchmark 3",
-    equation = "nu_t = kappa u* z (1 - z/h)"
+    equation = "nu_t = l^2 |du/dz|, l = kappa z sqrt(1 - z/h) (kappa u* z (1 - z/h) in a uniform channel)"
 )]
 pub struct Parabolic {
     /// friction velocity u*
