@@ -25,7 +25,7 @@ pub mod rng;
 pub mod scene;
 
 pub use closure::drag::DragLaw;
-pub use closure::fluctuation::{FlowScales, Fluctuation, FluctuationDraw, ParticleSlip, TurbulencePoint};
+pub use closure::fluctuation::{DriftForm, FlowScales, Fluctuation, FluctuationDraw, ParticleSlip, TurbulencePoint};
 pub use closure::granular::{
     GranularStress, JohnsonJacksonElastic, KineticCoefficients, KineticTheory, LocalRheology, LocalState,
     SaltationInput,

@@ -15,6 +15,7 @@ pub mod eulerian;
 pub mod inputs;
 pub mod lagrangian;
 pub mod output;
+pub mod rouse;
 pub mod run;
 pub mod validate;
 

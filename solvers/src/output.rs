@@ -147,6 +147,11 @@ pub struct Summary {
     /// temperature samples (one per fluid period)
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub haff_max_deviation: Option<f64>,
+    /// runs with an active fluctuation closure: Rouse number of the phi profile fitted as
+    /// Cheng et al. eqs 38-39 over 0.1 h <= z - z_b <= 0.5 h ([`crate::rouse`]), with z_b
+    /// the initial bed height and h the water depth of the scene; absent where undefined
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rouse_number: Option<f64>,
 }
 
 /// `manifest.json`: enough to reproduce the run.

@@ -8,6 +8,9 @@ use saltus_core::{
 };
 use serde::{Deserialize, Serialize};
 
+use super::MeanField;
+use saltus_core::DriftForm;
+
 /// Discrete random walk (DRW) tied to the Reynolds shear stress
 ///
 /// u'_z = lambda_1,  u'_x = -u'_z + lambda_2,  u'_y = 0,  lambda_1, lambda_2 ~ N(0, sigma^2),
@@ -19,6 +22,8 @@ use serde::{Deserialize, Serialize};
 ///   fluid velocity).
 /// * Defaults: `period` absent, i.e. tau_t = [`FlowScales::depth`] /
 ///   |[`FlowScales::bulk_velocity`]|. Give `period` (s) to impose a fixed redraw period.
+///   `mean_field = "gradient"` (Chassagne eq 4.4); `ito` gives the flux -d(D phi)/dz, the
+///   diffusion limit of draws whose amplitude is set where they are drawn ([`MeanField`]).
 /// * Valid range: `period` > 0 when given. Needs the Reynolds shear stress
 ///   ([`TurbulencePoint::reynolds_stress`], already R_xz/(rho_f eps)), e.g. from
 ///   `mixing_length`; refused on laminar flow.
@@ -59,6 +64,8 @@ pub struct DiscreteRandomWalk {
     #[serde(skip_serializing_if = "Option::is_none")]
     #[param(range = "(0, inf)", unit = "s")]
     pub period: Option<f64>,
+    /// mean-field form of the drift: `ito` (the draws' diffusion limit) or `gradient`
+    pub mean_field: MeanField,
 }
 
 impl DiscreteRandomWalk {
@@ -94,6 +101,10 @@ impl Fluctuation for DiscreteRandomWalk {
         let l2: f64 = StandardNormal.sample(rng);
         let uz = sigma * l1;
         FluctuationDraw { u: [-uz + sigma * l2, 0.0, uz], duration: self.turnover_time(s) }
+    }
+
+    fn drift_form(&self) -> DriftForm {
+        self.mean_field.form()
     }
 
     fn diffusivity(&self, t: &TurbulencePoint, s: &FlowScales) -> f64 {
@@ -188,7 +199,7 @@ mod tests {
 
     #[test]
     fn period_overrides_turnover_and_round_trips() {
-        let m = DiscreteRandomWalk { period: Some(0.5) };
+        let m = DiscreteRandomWalk { period: Some(0.5), ..DiscreteRandomWalk::default() };
         assert_eq!(m.turnover_time(&scales()), 0.5);
         assert_eq!(m.diffusivity(&point(), &scales()), SIGMA * SIGMA * 0.5 / 2.0);
         let b: Box<dyn Fluctuation> = Box::new(m.clone());
@@ -237,8 +248,14 @@ mod tests {
 
     #[test]
     fn validate_names_period_and_needs_reynolds_stress() {
-        assert_eq!(DiscreteRandomWalk { period: Some(0.0) }.validate().unwrap_err().key, "period");
-        assert_eq!(DiscreteRandomWalk { period: Some(-1.0) }.validate().unwrap_err().key, "period");
+        assert_eq!(
+            DiscreteRandomWalk { period: Some(0.0), ..DiscreteRandomWalk::default() }.validate().unwrap_err().key,
+            "period"
+        );
+        assert_eq!(
+            DiscreteRandomWalk { period: Some(-1.0), ..DiscreteRandomWalk::default() }.validate().unwrap_err().key,
+            "period"
+        );
         assert!(DiscreteRandomWalk::default().validate().is_ok());
         assert_eq!(DiscreteRandomWalk::default().needs(), Needs::of(&[Field::ReynoldsStress]));
         assert!(toml::from_str::<DiscreteRandomWalk>("tau = 1.0").is_err());

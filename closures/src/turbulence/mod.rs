@@ -4,10 +4,12 @@
 pub mod k_omega;
 pub mod laminar;
 pub mod mixing_length;
+pub mod parabolic;
 
 pub use k_omega::{KOmega, KOmegaWall};
 pub use laminar::Laminar;
 pub use mixing_length::{MixingLength, MixingLengthForm};
+pub use parabolic::Parabolic;
 
 #[cfg(test)]
 mod tests {

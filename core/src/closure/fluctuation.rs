@@ -47,6 +47,20 @@ pub struct FluctuationDraw {
     pub duration: f64,
 }
 
+/// How the mean-field face turns the particle diffusivity D into a wall-normal flux.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DriftForm {
+    /// gradient diffusion, flux -D dphi/dz: the drift velocity u_d = D grad(phi)/phi of
+    /// Chassagne et al. 2023 eq 4.4 (Cheng et al. eq 40)
+    Gradient,
+    /// flux -d(D phi)/dz: the diffusion limit of a random walk whose velocity and duration
+    /// are fixed where each eddy is drawn, u_d = D grad(phi)/phi + grad(D). Such walks
+    /// drift towards weak turbulence by grad(D) (MacInnes & Bracco 1992, Phys. Fluids A 4,
+    /// 2809: random-walk models violate the well-mixed condition); this form is that of
+    /// the draws, so that both faces of one closure give the same profile.
+    Ito,
+}
+
 /// A fluctuation closure.
 #[typetag::serde(tag = "type")]
 pub trait Fluctuation: Describe + Send + Sync + std::fmt::Debug {
@@ -61,6 +75,11 @@ pub trait Fluctuation: Describe + Send + Sync + std::fmt::Debug {
 
     /// Draw the fluctuation seen by one particle, using the caller's seeded stream.
     fn draw(&self, t: &TurbulencePoint, p: &ParticleSlip, s: &FlowScales, rng: &mut Rng) -> FluctuationDraw;
+
+    /// The form of the mean-field flux; gradient diffusion unless the model says otherwise.
+    fn drift_form(&self) -> DriftForm {
+        DriftForm::Gradient
+    }
 
     /// Wall-normal particle diffusivity implied by the model (m^2/s).
     fn diffusivity(&self, t: &TurbulencePoint, s: &FlowScales) -> f64;

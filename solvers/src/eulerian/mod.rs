@@ -18,10 +18,14 @@
 //!   phi w_p = -(eps/K) [phi (rho_p - rho_f) g cos(alpha) + dp_p/dz] - eps D dphi/dz,
 //!
 //!   with K of eq 2.10 (the drag closure times the hindrance closure, evaluated with the
-//!   full slip |u_f - u_p| including the wall-normal slip w_p / eps) and D the mean-field
-//!   diffusivity of the fluctuation closure: the drift velocity of eqs 4.3-4.4, present
-//!   only when a fluctuation closure is active. Its sign is chosen so that the dispersion
-//!   flux runs down the concentration gradient (Rouse balance w_s phi = -D dphi/dz).
+//!   full slip |u_f - u_p| including the wall-normal slip w_p / eps, less the drift
+//!   velocity: the slip u_f - u_p + u_d of eq 4.3) and D the mean-field diffusivity of the
+//!   fluctuation closure times the open fraction (1 - phi/phi_max): the drift velocity of
+//!   eqs 4.3-4.4, present only when a fluctuation closure is active. Its sign is chosen so
+//!   that the dispersion flux runs down the concentration gradient (Rouse balance
+//!   w_s phi = -D dphi/dz). A closure of [`saltus_core::DriftForm::Ito`] replaces
+//!   eps D dphi/dz by eps d(D phi)/dz, the diffusion limit of its draws (see
+//!   docs/closures/fluctuation.md).
 //! * Streamwise momentum of both phases (eqs 2.3-2.4, vertical advection neglected: it
 //!   vanishes at steady state):
 //!

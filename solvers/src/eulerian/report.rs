@@ -206,6 +206,10 @@ impl Eulerian<'_> {
             particles: None,
             particle_steps_per_s: None,
             shields_turbulent: None,
+            rouse_number: self.m.fluctuation.and_then(|_| {
+                let d = &self.cfg.domain;
+                crate::rouse::rouse_number(self.z(), self.dz(), &phi, d.bed_height, d.water_depth)
+            }),
             ..Summary::default()
         };
         // a column without moving grains (clear water) has no transport levels
@@ -227,6 +231,10 @@ impl Eulerian<'_> {
             figure(summary.shields, |v| format!("{v:.3}")),
             self.mass_error()
         );
+        let text = match summary.rouse_number {
+            Some(ro) => format!("{text}, Rouse number {ro:.3}"),
+            None => text,
+        };
         RunReport { profiles: p, summary, text }
     }
 }

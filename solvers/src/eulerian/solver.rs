@@ -5,7 +5,7 @@
 
 use saltus_core::scene::Scene;
 use saltus_core::Error;
-use saltus_core::{DragLaw, EffectiveViscosity, Fluctuation, Turbulence};
+use saltus_core::{DragLaw, DriftForm, EffectiveViscosity, Fluctuation, Turbulence};
 
 use super::coefficients::{Coefficients, Scratch};
 use super::config::{Config, Top};
@@ -74,6 +74,14 @@ pub struct Eulerian<'a> {
     pub(super) co: Coefficients,
     pub(super) sc: Scratch,
     pub(super) stepping: Stepping,
+    /// form of the drift flux of the fluctuation closure (gradient without one)
+    pub(super) drift_form: DriftForm,
+    /// volume fraction above which the wall-normal slip enters the drag: 1e-6 without a
+    /// fluctuation closure; with one, any positive phi, because a suspension profile spans
+    /// many decades (a Rouse profile over a smooth wall falls below 1e-15) and its grains
+    /// settle at the terminal velocity of the drag law, not at the Stokes velocity that a
+    /// zero slip would give
+    pub(super) slip_phi: f64,
 }
 
 impl<'a> Eulerian<'a> {
@@ -198,6 +206,7 @@ impl<'a> Eulerian<'a> {
             up: vec![0.0; n],
             temp: vec![t0; n],
             flux: vec![0.0; n + 1],
+            drift_flux: vec![0.0; n + 1],
             eddy: EddyViscosity::new(n, cfg.settings.eddy_relaxation),
             kw,
             mass0,
@@ -216,6 +225,8 @@ impl<'a> Eulerian<'a> {
             co: Coefficients::new(n),
             sc: Scratch::new(n),
             stepping,
+            drift_form: fluctuation.map_or(DriftForm::Gradient, |f| f.drift_form()),
+            slip_phi: if fluctuation.is_some() { f64::MIN_POSITIVE } else { 1e-6 },
             cfg,
         };
         model.evaluate().map_err(|b| Error::Invalid(format!("{file}: initial state: {b}")))?;

@@ -25,6 +25,10 @@ pub(super) struct State {
     /// particle volume flux phi w_p through each face (m/s), faces 0..=n: the wall-normal
     /// slip of the next drag evaluation comes from it
     pub flux: Vec<f64>,
+    /// the drift part of `flux` (m/s), zero without a fluctuation closure: the flux of the
+    /// drift velocity, which is part of the slip the drag sees (Chassagne eq 4.3), not of
+    /// the settling
+    pub drift_flux: Vec<f64>,
     /// eddy viscosity, lagged and relaxed between steps (Picard)
     pub eddy: EddyViscosity,
     /// k and omega, present only when the turbulence closure transports them
@@ -42,6 +46,7 @@ pub(super) struct Saved {
     up: Vec<f64>,
     temp: Vec<f64>,
     flux: Vec<f64>,
+    drift_flux: Vec<f64>,
 }
 
 impl State {
@@ -66,6 +71,7 @@ impl State {
             (&mut saved.up, &self.up),
             (&mut saved.temp, &self.temp),
             (&mut saved.flux, &self.flux),
+            (&mut saved.drift_flux, &self.drift_flux),
         ] {
             dst.clear();
             dst.extend_from_slice(src);
@@ -82,6 +88,7 @@ impl State {
         self.up.copy_from_slice(&saved.up);
         self.temp.copy_from_slice(&saved.temp);
         self.flux.copy_from_slice(&saved.flux);
+        self.drift_flux.copy_from_slice(&saved.drift_flux);
     }
 
     /// Largest relative rate of change (1/s) since `saved` over a step `dt`, and the

@@ -2,6 +2,8 @@
 //! quasi-static wall-normal momentum balances (eqs 2.5-2.6): conservative, implicit in
 //! phi, well balanced at steady state.
 
+use saltus_core::DriftForm;
+
 use super::rheology::Rheology;
 use super::Eulerian;
 use crate::run::Breakdown;
@@ -21,7 +23,8 @@ fn minmod(a: f64, b: f64) -> f64 {
 impl Eulerian<'_> {
     /// Implicit step of the sediment mass (eq 2.2) with the wall-normal particle velocity of
     /// the quasi-static wall-normal momentum balance (eqs 2.5-2.6):
-    /// phi w_p = -(eps/K) [phi (rho_p - rho_f) g cos + dp_p/dz] - eps D dphi/dz.
+    /// phi w_p = -(eps/K) [phi (rho_p - rho_f) g cos + dp_p/dz] - eps D dphi/dz, or
+    /// - eps d(D phi)/dz for a fluctuation closure of [`DriftForm::Ito`].
     pub(super) fn solve_phi(&mut self, dt: f64) -> Result<(), Breakdown> {
         let n = self.len();
         let gw = self.c.buoyant_weight;
@@ -38,14 +41,29 @@ impl Eulerian<'_> {
             let h = hs[j];
             let up = if gw >= 0.0 { r } else { l };
             let m = self.co.mobility[up];
-            let dd = 0.5 * ((1.0 - self.s.phi[l]) * self.co.drift[l] + (1.0 - self.s.phi[r]) * self.co.drift[r]);
+            // drift flux -eps D dphi/dz (gradient) or -eps d(D phi)/dz (Ito), implicit in phi
+            // with eps and D lagged: both keep the M-matrix (cl >= 0 >= cr), so the drift
+            // costs no time-step restriction however large D is
+            let (dl, dr) = match self.drift_form {
+                DriftForm::Gradient => {
+                    let dd =
+                        0.5 * ((1.0 - self.s.phi[l]) * self.co.drift[l] + (1.0 - self.s.phi[r]) * self.co.drift[r]);
+                    (dd, dd)
+                }
+                DriftForm::Ito => {
+                    let eps = 1.0 - 0.5 * (self.s.phi[l] + self.s.phi[r]);
+                    (eps * self.co.drift[l], eps * self.co.drift[r])
+                }
+            };
             let (pl, pr) = (self.co.pres[l], self.co.pres[r]);
             // local rheologies: factor r on the pressure part of the flux and the deferred
             // correction of the weight; kinetic theory: r = 1 and the MUSCL correction below
             let wb = if well_balanced { Some(self.well_balanced_face(j, m, gw, pl.p, pr.p)) } else { None };
             let mp = m * wb.map_or(1.0, |w| w.0);
-            let mut cl = mp * pl.a / h + dd / h;
-            let mut cr = -mp * pr.a / h - dd / h;
+            self.sc.drift_lr[2 * j] = dl;
+            self.sc.drift_lr[2 * j + 1] = dr;
+            let mut cl = mp * pl.a / h + dl / h;
+            let mut cr = -mp * pr.a / h - dr / h;
             if up == r {
                 cr -= m * gw;
             } else {
@@ -98,6 +116,13 @@ impl Eulerian<'_> {
         }
         for (i, &dzi) in dz.iter().enumerate() {
             self.sc.work[i] = self.s.phi[i] - dt / dzi * (self.s.flux[i + 1] - self.s.flux[i]);
+        }
+        if self.m.fluctuation.is_some() {
+            // the drift part of the flux of the new phi, as the flux itself
+            for (j, &h) in hs.iter().enumerate().take(n).skip(1) {
+                let (dl, dr) = (self.sc.drift_lr[2 * j], self.sc.drift_lr[2 * j + 1]);
+                self.s.drift_flux[j] = (dl * self.sc.work[j - 1] - dr * self.sc.work[j]) / h;
+            }
         }
         let phi_max = self.m.rheology.phi_max();
         for i in 0..n {

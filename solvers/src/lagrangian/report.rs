@@ -30,8 +30,10 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
     let scales = output::TransportScales::new(scene, mat.rho_p, mat.d, m.config().domain.water_depth);
     let samples = m.stats().samples;
     let mut p = Profiles::default();
+    let z_c = z.clone();
     p.push("z", z);
     let mut transport = None;
+    let mut rouse = None;
     if samples > 0 {
         let av = m.stats().averaged(m.cell_volume());
         let qs: f64 = av.q_s.iter().map(|q| q * dz).sum();
@@ -39,6 +41,11 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         let tau_t_max = av.tau_t.iter().fold(0.0f64, |a, t| a.max(*t));
         let (z1, z99) = output::flux_levels(&faces, &av.q_s, 0.01, 0.99);
         transport = Some((qs, tau_max, tau_t_max, z1, z99));
+        if m.has_fluctuation() {
+            let d = &m.config().domain;
+            let dzs = vec![dz; n];
+            rouse = crate::rouse::rouse_number(&z_c, &dzs, &av.phi, d.bed_height, d.water_depth);
+        }
         p.push("phi", av.phi);
         p.push("u_f", av.u_f);
         p.push("u_p", av.v[0].clone());
@@ -96,6 +103,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         haff_tau_fit_s: haff.and(cooling.fitted_tau()).and_then(finite),
         haff_granular_temperature: haff.and_then(|h| cooling.haff_at(h, m.time())).and_then(finite),
         haff_max_deviation: haff.and_then(|_| finite(cooling.max_deviation)),
+        rouse_number: rouse,
     };
     let measured = match (summary.qs_star, summary.shields) {
         (None, _) | (_, None) if samples > 0 => format!(

@@ -263,6 +263,10 @@ impl<'a> Lagrangian<'a> {
     pub fn scene(&self) -> &Scene {
         self.scene
     }
+    /// Whether the scene has an active fluctuation closure.
+    pub fn has_fluctuation(&self) -> bool {
+        self.fluctuation.is_some()
+    }
     /// Configuration.
     pub fn config(&self) -> &Config {
         &self.cfg

@@ -1,0 +1,112 @@
+//! Turbulent suspension in the Eulerian solver through the mean-field face of the
+//! fluctuation closures: the Rouse profile (VERIFICATION.md benchmark 3), the Ito form of
+//! the drift against its own analytic profile, and Cheng et al.'s dilute channels (section
+//! 3.1, table 2). Run with `cargo test -p saltus-solvers --release --test suspension`.
+
+use std::path::{Path, PathBuf};
+
+use saltus_core::scene::Scene;
+use saltus_solvers::eulerian::{Config, Eulerian};
+use saltus_solvers::run::{drive, Ending, Quiet, Stepper};
+
+fn case(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(rel)
+}
+
+fn load(rel: &str, set: &[&str]) -> Scene {
+    saltus_closures::link();
+    let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+    Scene::from_file_with(case(rel), &set).expect("scene")
+}
+
+fn run(s: &Scene) -> (Eulerian<'_>, Ending) {
+    let cfg = Config::from_scene(s).expect("config");
+    let mut m = Eulerian::new(s, cfg).expect("solver");
+    let ending = drive(&mut m, &mut Quiet).0;
+    (m, ending)
+}
+
+/// Constants of `cases/verification/rouse_parabolic.toml`: depth, u*, Sc, and the Stokes
+/// terminal velocity (s - 1) g d^2 / (18 nu) of its grains.
+const H: f64 = 0.1;
+const U_STAR: f64 = 0.05;
+const SC: f64 = 0.7;
+const KAPPA: f64 = 0.41;
+
+fn stokes_velocity() -> f64 {
+    1.65 * 9.81 * 1e-8 / (18.0 * 1e-6)
+}
+
+/// Largest relative deviation of phi / phi(cell a) from `shape(z) / shape(z_a)` over
+/// z_a <= z <= top.
+fn worst_deviation(m: &Eulerian<'_>, a: usize, top: f64, shape: impl Fn(f64) -> f64) -> f64 {
+    let (z, phi) = (m.z(), m.phi());
+    (a..m.len())
+        .filter(|&i| z[i] <= top)
+        .map(|i| (phi[i] / phi[a] / (shape(z[i]) / shape(z[a])) - 1.0).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Benchmark 3: under nu_t = kappa u* z (1 - z/h) and D = nu_t / Sc (gradient form,
+/// Chassagne eq 4.4) the steady suspension is the Rouse profile
+/// phi/phi_a = [((h - z)/z) (a/(h - a))]^P, P = w_s Sc / (kappa u*), within 0.5 % for
+/// a <= z <= 0.9 h at 200 cells; the sediment volume is conserved to round-off and the
+/// fitted Rouse number of the summary (Cheng eq 38 over 0.1 h - 0.5 h) is P within 0.5 %.
+#[test]
+fn rouse_profile_under_a_parabolic_eddy_viscosity() {
+    let s = load("cases/verification/rouse_parabolic.toml", &[]);
+    let (m, ending) = run(&s);
+    assert_eq!(ending, Ending::Steady);
+    let p = stokes_velocity() * SC / (KAPPA * U_STAR);
+    // a: the centre of cell 10, 0.0525 h
+    let worst = worst_deviation(&m, 10, 0.9 * H, |z| ((H - z) / z).powf(p));
+    assert!(worst < 5e-3, "Rouse profile off by {worst:e}");
+    assert!(m.mass_error() < 1e-12, "mass error {:e}", m.mass_error());
+    let ro = m.report(&ending, 0.0).summary.rouse_number.expect("rouse number");
+    assert!((ro / p - 1.0).abs() < 5e-3, "fitted Rouse number {ro} against P = {p}");
+}
+
+/// The Ito form of the drift (flux -d(D phi)/dz, the diffusion limit of a random walk whose
+/// draws are set where they are drawn) under the same parabolic D: w_s phi = -d(D phi)/dz
+/// gives D phi proportional to the Rouse profile, phi ~ [(h - z)/z]^P / (z (h - z)); within
+/// 0.5 % for a <= z <= 0.8 h (the profile is singular at the surface, where D vanishes, as
+/// (h - z)^(P - 1)).
+#[test]
+fn ito_drift_matches_its_analytic_profile() {
+    let s = load("cases/verification/rouse_parabolic.toml", &["closures.fluctuation.mean_field=\"ito\""]);
+    let (m, ending) = run(&s);
+    assert_eq!(ending, Ending::Steady);
+    let p = stokes_velocity() * SC / (KAPPA * U_STAR);
+    let worst = worst_deviation(&m, 10, 0.8 * H, |z| ((H - z) / z).powf(p) / (z * (H - z)));
+    assert!(worst < 5e-3, "Ito profile off by {worst:e}");
+    assert!(m.mass_error() < 1e-12, "mass error {:e}", m.mass_error());
+}
+
+fn rouse_number(rel: &str, set: &[&str]) -> f64 {
+    let s = load(rel, set);
+    let (m, ending) = run(&s);
+    assert_eq!(ending, Ending::Steady, "{rel} {set:?}");
+    assert!(m.mass_error() < 1e-12, "{rel}: mass error {:e}", m.mass_error());
+    m.report(&ending, 0.0).summary.rouse_number.expect("rouse number")
+}
+
+/// Cheng et al. section 3.1, NS1 of Muste et al. 2005 (table 2): k-omega channel with the
+/// eddy interaction model (C0 = 3, Ito mean-field form); Cheng's Rouse number 0.86 (fig 3b)
+/// within 10 %, steady, the sediment volume conserved to round-off.
+#[test]
+fn muste_ns1_rouse_number_within_ten_percent_of_cheng() {
+    let ro = rouse_number("cases/cheng/dilute_muste_ns1.toml", &[]);
+    assert!((ro / 0.86 - 1.0).abs() < 0.1, "Rouse number {ro} against 0.86");
+}
+
+/// Cheng et al. figure 2c (Kiger & Pan 2002): the suspension rises with C0, i.e. the Rouse
+/// number falls strictly over C0 = 1, 2, 3, 4; and the gradient form (well mixed) suspends
+/// more than the Ito form, whose drift grad(D) carries grains towards the wall.
+#[test]
+fn kiger_pan_rouse_number_falls_with_c0() {
+    let rel = "cases/cheng/dilute_kiger_pan.toml";
+    let ro: Vec<f64> = (1..=4).map(|c| rouse_number(rel, &[&format!("closures.fluctuation.c0={c}")])).collect();
+    assert!(ro.windows(2).all(|w| w[1] < w[0]), "Rouse numbers over C0 = 1-4: {ro:?}");
+    let gradient = rouse_number(rel, &["closures.fluctuation.mean_field=\"gradient\""]);
+    assert!(gradient < ro[2], "gradient {gradient} against Ito {}", ro[2]);
+}
