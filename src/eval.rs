@@ -7,8 +7,8 @@ use std::path::Path;
 
 use anyhow::{anyhow, bail, Context};
 use saltus_core::closure::Family;
-use saltus_core::{registry, runtime};
 use saltus_core::scene::{closure_from_value, to_toml_table};
+use saltus_core::{registry, runtime};
 use saltus_core::{
     ColumnView, Describe, DragLaw, EffectiveViscosity, Field, FlowScales, Fluctuation, GranularStress, Hindrance,
     ParticleSlip, Turbulence, TurbulencePoint,

@@ -5,13 +5,16 @@
 //!
 //! The law itself is the user's; what the adapter adds, documented with the trait it
 //! fills:
-//! * C_D Re_p ([`DragLaw::cd_re`]) is C_D(r) r at r = max(Re_p, [`RE_MIN`]), finite at
-//!   Re_p = 0 for a law given as C_D alone (the DEM evaluates C_D at the same clamped
-//!   Re_p, `solvers/src/lagrangian/drag.rs`); for a law tending to a / Re_p the error is
-//!   C_D^inf [`RE_MIN`] relative to a.
+//! * C_D Re_p ([`DragLaw::cd_re`]) is the law's own `cd_re` output when it gives one
+//!   ([`saltus_core::runtime::optional_outputs`]; its C_D may then be +inf at Re_p = 0,
+//!   [`saltus_core::runtime::accepts`]), else C_D(r) r at r = max(Re_p, [`RE_MIN`]),
+//!   finite at Re_p = 0 (the DEM evaluates C_D at the same clamped Re_p,
+//!   `solvers/src/lagrangian/drag.rs`): for a law tending to a / Re_p the error at
+//!   Re_p < [`RE_MIN`] is then C_D^inf [`RE_MIN`] relative to a.
 //! * C_D^inf ([`DragLaw::cd_inf`], the quadratic drag dissipation of Chassagne et al. 2023
-//!   eq 3.13) is C_D at Re_p = [`RE_INF`], evaluated once when the model is built: exact
-//!   for C_D = c + a / Re_p, which rounds to c there.
+//!   eq 3.13) is C_D at Re_p = [`RE_INF`], evaluated once when the model is built (the
+//!   call that also tells whether the law gives `cd_re`): exact for C_D = c + a / Re_p,
+//!   which rounds to c there.
 //! * A function that fails (raises, returns a wrong shape or a non-finite value) fills its
 //!   outputs with NaN, keeps the first message ([`Describe::failure`]) and is not called
 //!   again: the run driver ends the run with that message.
@@ -37,6 +40,8 @@ pub struct RuntimeClosure {
     model: Arc<RuntimeModel>,
     values: Vec<f64>,
     cd_inf: f64,
+    /// a drag law that returns `cd_re`
+    gives_cd_re: bool,
     failure: OnceLock<String>,
 }
 
@@ -50,10 +55,14 @@ impl fmt::Debug for RuntimeClosure {
 /// adapter at `values`, as the trait object of the model's family. A drag law is
 /// evaluated once here for its C_D^inf, which must be finite and >= 0.
 pub fn build(model: &Arc<RuntimeModel>, values: Vec<f64>) -> Result<Built, String> {
-    let mut c = RuntimeClosure { model: Arc::clone(model), values, cd_inf: 0.0, failure: OnceLock::new() };
+    let mut c =
+        RuntimeClosure { model: Arc::clone(model), values, cd_inf: 0.0, gives_cd_re: false, failure: OnceLock::new() };
     Ok(match model.family {
         Family::Drag => {
-            let cd_inf = c.cd(RE_INF);
+            // one call: C_D^inf, and whether the law gives C_D Re_p
+            let (mut cd, mut cd_re) = ([0.0], [0.0]);
+            c.gives_cd_re = c.call(&[&[RE_INF]], &mut [&mut cd, &mut cd_re]) == 2;
+            let cd_inf = cd[0];
             if let Some(f) = c.failure.get() {
                 return Err(f.clone());
             }
@@ -73,11 +82,12 @@ pub fn build(model: &Arc<RuntimeModel>, values: Vec<f64>) -> Result<Built, Strin
 }
 
 impl RuntimeClosure {
-    /// The function on `inputs` into `outputs`; on failure NaN and the first message kept.
-    fn call(&self, inputs: &[&[f64]], outputs: &mut [&mut [f64]]) {
+    /// The function on `inputs` into `outputs`; how many outputs it wrote. On failure
+    /// NaN everywhere and the first message kept.
+    fn call(&self, inputs: &[&[f64]], outputs: &mut [&mut [f64]]) -> usize {
         if self.failure.get().is_none() {
             match self.model.function.evaluate(&self.values, inputs, outputs) {
-                Ok(()) => return,
+                Ok(n) => return n,
                 Err(m) => {
                     let _ = self.failure.set(format!("{} closure `{}`: {m}", self.model.family, self.model.name));
                 }
@@ -86,6 +96,7 @@ impl RuntimeClosure {
         for o in outputs.iter_mut() {
             o.fill(f64::NAN);
         }
+        outputs.len()
     }
 
     /// One output at one point.
@@ -143,8 +154,9 @@ impl DragLaw for RuntimeClosure {
         self.scalar(&[re_p])
     }
     fn cd_re(&self, re_p: f64) -> f64 {
-        let r = re_p.max(RE_MIN);
-        self.cd(r) * r
+        let mut out = [0.0];
+        self.cd_re_batch(&[re_p], &mut out);
+        out[0]
     }
     fn cd_inf(&self) -> f64 {
         self.cd_inf
@@ -153,11 +165,17 @@ impl DragLaw for RuntimeClosure {
         self.call(&[re_p], &mut [out]);
     }
     fn cd_re_batch(&self, re_p: &[f64], out: &mut [f64]) {
-        // one allocation per batch, beside the function's own arrays
+        // one or two allocations per batch, beside the function's own arrays
+        let mut cd = vec![0.0; re_p.len()];
+        if self.gives_cd_re {
+            // at Re_p itself, 0 included: its C_D may be +inf there
+            self.call(&[re_p], &mut [&mut cd, &mut *out]);
+            return;
+        }
         let r: Vec<f64> = re_p.iter().map(|&x| x.max(RE_MIN)).collect();
-        self.call(&[&r], &mut [&mut *out]);
-        for (o, x) in out.iter_mut().zip(&r) {
-            *o *= x;
+        self.call(&[&r], &mut [&mut cd]);
+        for ((o, c), x) in out.iter_mut().zip(&cd).zip(&r) {
+            *o = c * x;
         }
     }
 }

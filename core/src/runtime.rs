@@ -34,6 +34,27 @@ pub fn io(family: Family) -> Option<(&'static [&'static str], &'static [&'static
     }
 }
 
+/// Outputs a function of `family` may return beside those of [`io`]: C_D Re_p (`cd_re`)
+/// of a drag law, which the solvers use where given (finite at Re_p = 0, and written as
+/// the law's own algebra: Dallavalle's c Re_p + a rather than (c + a / Re_p) Re_p).
+pub fn optional_outputs(family: Family) -> &'static [&'static str] {
+    match family {
+        Family::Drag => &["cd_re"],
+        _ => &[],
+    }
+}
+
+/// Whether output `output` = `value` of a run-time closure of `family` at row `row` of
+/// `inputs` is usable: finite, or C_D = +inf at Re_p = 0 (a drag law with a Stokes limit,
+/// whose `cd_re` the solvers then use).
+pub fn accepts(family: Family, output: &str, value: f64, inputs: &[&[f64]], row: usize) -> bool {
+    value.is_finite()
+        || (family == Family::Drag
+            && output == "cd"
+            && value == f64::INFINITY
+            && inputs.first().and_then(|re| re.get(row)) == Some(&0.0))
+}
+
 /// Why `family` cannot hold a run-time closure, naming those that can.
 pub fn refused(family: Family) -> String {
     let allowed: Vec<&str> = FAMILIES.iter().map(|f| f.key()).collect();
@@ -48,10 +69,12 @@ pub fn refused(family: Family) -> String {
 pub trait BatchFunction: Send + Sync {
     /// Evaluate with `params` (the values of [`RuntimeModel::params`], in order) on
     /// `inputs` (one slice per input name of [`io`], all of one length), writing
-    /// `outputs` (one slice per output name, of that length). `Err` is a message for the
-    /// user (the function raised, or returned something else than the outputs); the
-    /// outputs are then undefined.
-    fn evaluate(&self, params: &[f64], inputs: &[&[f64]], outputs: &mut [&mut [f64]]) -> Result<(), String>;
+    /// `outputs`: one slice per output name of [`io`], then possibly slices for the first
+    /// [`optional_outputs`], each of the inputs' length. Returns how many of `outputs` it
+    /// wrote: every required one, then the optional ones it gives, in order. `Err` is a
+    /// message for the user (the function raised, or returned something else than the
+    /// outputs); the outputs are then undefined.
+    fn evaluate(&self, params: &[f64], inputs: &[&[f64]], outputs: &mut [&mut [f64]]) -> Result<usize, String>;
 }
 
 /// A limit a run-time closure declares: a [`Limit`], or one whose number is the value of

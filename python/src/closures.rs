@@ -24,19 +24,27 @@ use crate::{json_to_py, py_to_toml, SceneError};
 /// A Python function as the law of a run-time closure.
 struct PyFunction {
     function: Py<PyAny>,
+    family: Family,
     params: Vec<String>,
     inputs: &'static [&'static str],
     outputs: &'static [&'static str],
+    optional: &'static [&'static str],
 }
 
 impl BatchFunction for PyFunction {
-    fn evaluate(&self, params: &[f64], inputs: &[&[f64]], outputs: &mut [&mut [f64]]) -> Result<(), String> {
+    fn evaluate(&self, params: &[f64], inputs: &[&[f64]], outputs: &mut [&mut [f64]]) -> Result<usize, String> {
         Python::attach(|py| self.call(py, params, inputs, outputs))
     }
 }
 
 impl PyFunction {
-    fn call(&self, py: Python<'_>, params: &[f64], inputs: &[&[f64]], outputs: &mut [&mut [f64]]) -> Result<(), String> {
+    fn call(
+        &self,
+        py: Python<'_>,
+        params: &[f64],
+        inputs: &[&[f64]],
+        outputs: &mut [&mut [f64]],
+    ) -> Result<usize, String> {
         let raised = |e: PyErr| format!("the Python function raised {e}");
         let kwargs = PyDict::new(py);
         for (name, x) in self.inputs.iter().zip(inputs) {
@@ -48,22 +56,32 @@ impl PyFunction {
         let ret = self.function.bind(py).call((), Some(&kwargs)).map_err(raised)?;
         let n = inputs.first().map_or(0, |x| x.len());
         if let Ok(d) = ret.cast::<PyDict>() {
+            let known = || {
+                let optional = self.optional.iter().map(|o| format!(" (optional: {o})"));
+                format!("{}{}", self.outputs.join(", "), optional.collect::<String>())
+            };
             for k in d.keys() {
                 let k = k.str().map(|s| s.to_string()).unwrap_or_default();
-                if !self.outputs.contains(&k.as_str()) {
-                    return Err(format!("the Python function returned `{k}`; the outputs are {}", self.outputs.join(", ")));
+                if !self.outputs.contains(&k.as_str()) && !self.optional.contains(&k.as_str()) {
+                    return Err(format!("the Python function returned `{k}`; the outputs are {}", known()));
                 }
             }
-            for (name, out) in self.outputs.iter().zip(outputs.iter_mut()) {
-                let v = d.get_item(name).map_err(raised)?.ok_or_else(|| {
-                    format!("the Python function returned no `{name}`; the outputs are {}", self.outputs.join(", "))
-                })?;
+            let mut written = 0;
+            let names = self.outputs.iter().map(|n| (n, true)).chain(self.optional.iter().map(|n| (n, false)));
+            for ((name, required), out) in names.zip(outputs.iter_mut()) {
+                let Some(v) = d.get_item(name).map_err(raised)? else {
+                    if required {
+                        return Err(format!("the Python function returned no `{name}`; the outputs are {}", known()));
+                    }
+                    break;
+                };
                 self.copy(&v, name, inputs, out)?;
+                written += 1;
             }
-            return Ok(());
+            return Ok(written);
         }
         match (self.outputs, outputs) {
-            ([name], [out]) => self.copy(&ret, name, inputs, out),
+            ([name], [out, ..]) => self.copy(&ret, name, inputs, out).map(|()| 1),
             _ => Err(format!(
                 "the Python function returned {}; expected a dict of {} (float64 arrays of {n} values)",
                 shown(&ret),
@@ -73,7 +91,7 @@ impl PyFunction {
     }
 
     /// Output `name` from `v` into `out`: a 1-D float64 array of the inputs' length, every
-    /// value finite.
+    /// value finite (C_D may be +inf at Re_p = 0).
     fn copy(&self, v: &Bound<'_, PyAny>, name: &str, inputs: &[&[f64]], out: &mut [f64]) -> Result<(), String> {
         let n = out.len();
         let wrong = || format!("output `{name}` is {}; expected a float64 array of shape ({n},)", shown(v));
@@ -83,7 +101,7 @@ impl PyFunction {
             return Err(wrong());
         }
         for (i, (o, &x)) in out.iter_mut().zip(a.iter()).enumerate() {
-            if !x.is_finite() {
+            if !runtime::accepts(self.family, name, x, inputs, i) {
                 let at: Vec<String> =
                     self.inputs.iter().zip(inputs).map(|(k, c)| format!("{k} = {}", number(c[i]))).collect();
                 return Err(format!("output `{name}` = {} at {}: not a finite number", number(x), at.join(", ")));
@@ -161,7 +179,8 @@ fn param(name: &str, v: &Bound<'_, PyAny>) -> PyResult<Param> {
 
 /// One `limits=` entry: a name, or (name, number or parameter name).
 fn limit(v: &Bound<'_, PyAny>, params: &[Param]) -> PyResult<RuntimeLimit> {
-    const KNOWN: &str = "\"high_reynolds\", \"dilute\", \"decreasing\", \"increasing\", (\"stokes\", x), (\"einstein\", x)";
+    const KNOWN: &str =
+        "\"high_reynolds\", \"dilute\", \"decreasing\", \"increasing\", (\"stokes\", x), (\"einstein\", x)";
     let bad = || PyValueError::new_err(format!("limits: {v} is not a limit; known: {KNOWN}"));
     if let Ok(s) = v.extract::<String>() {
         return Ok(RuntimeLimit::Fixed(match s.as_str() {
@@ -176,9 +195,10 @@ fn limit(v: &Bound<'_, PyAny>, params: &[Param]) -> PyResult<RuntimeLimit> {
     }
     let (kind, x): (String, Bound<'_, PyAny>) = v.extract().map_err(|_| bad())?;
     if let Ok(p) = x.extract::<String>() {
-        let i = params.iter().position(|q| q.name == p).ok_or_else(|| {
-            PyValueError::new_err(format!("limits: ({kind:?}, {p:?}): no parameter `{p}` in params"))
-        })?;
+        let i = params
+            .iter()
+            .position(|q| q.name == p)
+            .ok_or_else(|| PyValueError::new_err(format!("limits: ({kind:?}, {p:?}): no parameter `{p}` in params")))?;
         return match kind.as_str() {
             "stokes" => Ok(RuntimeLimit::StokesParam(i)),
             "einstein" => Ok(RuntimeLimit::EinsteinParam(i)),
@@ -239,9 +259,11 @@ pub fn register_closure(
     };
     let function = PyFunction {
         function: evaluate.clone().unbind(),
+        family: fam,
         params: params.iter().map(|p| p.name.clone()).collect(),
         inputs,
         outputs,
+        optional: runtime::optional_outputs(fam),
     };
     runtime::register(RuntimeModel {
         family: fam,

@@ -29,7 +29,10 @@ PYTHON_LAWS = {"closures.drag.type": "py_dallavalle", "closures.hindrance.type":
 
 def dallavalle(re_p, cd_inf, a):
     """C_D = cd_inf + a / Re_p"""
-    return {"cd": cd_inf + a / re_p}
+    # C_D Re_p as the built-in law writes it (finite at Re_p = 0, where C_D is +inf): the
+    # solvers use it, so the run is the built-in one bit for bit
+    with np.errstate(divide="ignore"):
+        return {"cd": cd_inf + a / re_p, "cd_re": cd_inf * re_p + a}
 
 
 def richardson_zaki(phi, re_p, exponent):

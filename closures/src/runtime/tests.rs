@@ -13,7 +13,7 @@ use super::*;
 use crate::drag::Dallavalle;
 use crate::hindrance::RichardsonZaki;
 
-type Law = dyn Fn(&[f64], &[&[f64]], &mut [&mut [f64]]) -> Result<(), String> + Send + Sync;
+type Law = dyn Fn(&[f64], &[&[f64]], &mut [&mut [f64]]) -> Result<usize, String> + Send + Sync;
 
 struct Function {
     law: Box<Law>,
@@ -21,7 +21,7 @@ struct Function {
 }
 
 impl BatchFunction for Function {
-    fn evaluate(&self, params: &[f64], inputs: &[&[f64]], outputs: &mut [&mut [f64]]) -> Result<(), String> {
+    fn evaluate(&self, params: &[f64], inputs: &[&[f64]], outputs: &mut [&mut [f64]]) -> Result<usize, String> {
         self.calls.fetch_add(1, Ordering::Relaxed);
         (self.law)(params, inputs, outputs)
     }
@@ -62,7 +62,7 @@ fn dallavalle(name: &'static str) -> Arc<Function> {
             for (o, &r) in out[0].iter_mut().zip(x[0]) {
                 *o = p[0] + p[1] / r;
             }
-            Ok(())
+            Ok(1)
         }),
     )
 }
@@ -94,10 +94,44 @@ fn a_batch_dallavalle_is_the_built_in_one() {
     // Re_p = 0: C_D Re_p at RE_MIN, a + c RE_MIN
     assert!((m.cd_re(0.0) - 24.0).abs() <= 1e-11);
     assert_eq!(m.cd_inf(), 0.4);
-    // one call per batch: two batches, the build's C_D^inf and the scalar above
+    // one call per batch: two batches, the scalar above, and the build's C_D^inf
     assert_eq!(f.calls.load(Ordering::Relaxed), 4);
     assert_eq!(m.limits(), vec![Limit::Stokes { cd_re: 24.0 }, Limit::Decreasing]);
     assert!(m.failure().is_none());
+}
+
+#[test]
+fn a_law_that_gives_cd_re_is_the_built_in_one_bit_for_bit() {
+    let params = vec![
+        Param::new("cd_inf", 0.4, ParamRange::closed(0.0, 10.0), "-", "C_D at infinite Re_p"),
+        Param::new("a", 24.4, ParamRange::open_closed(0.0, 100.0), "-", "viscous coefficient"),
+    ];
+    register(
+        Family::Drag,
+        "rt_dallavalle_cd_re",
+        params,
+        Box::new(|p, x, out| {
+            for (o, &r) in out[0].iter_mut().zip(x[0]) {
+                *o = p[0] + p[1] / r;
+            }
+            if let Some(cd_re) = out.get_mut(1) {
+                for (o, &r) in cd_re.iter_mut().zip(x[0]) {
+                    *o = p[0] * r + p[1];
+                }
+            }
+            Ok(out.len())
+        }),
+    );
+    let m = drag("type = \"rt_dallavalle_cd_re\"").unwrap();
+    let builtin = Dallavalle::default();
+    let re: Vec<f64> = (0..200).map(|i| 10f64.powf(-8.0 + 0.08 * i as f64)).collect();
+    let (mut a, mut b) = (vec![0.0; re.len()], vec![0.0; re.len()]);
+    m.cd_re_batch(&re, &mut a);
+    builtin.cd_re_batch(&re, &mut b);
+    assert_eq!(a, b);
+    assert_eq!(m.cd_re(3.0), builtin.cd_re(3.0));
+    // at Re_p = 0 itself, where its C_D is +inf: the Stokes limit a
+    assert_eq!(m.cd_re(0.0), 24.4);
 }
 
 #[test]
@@ -140,11 +174,15 @@ fn a_failing_law_gives_nan_keeps_its_message_and_is_not_called_again() {
         Family::Viscosity,
         "rt_failing",
         Vec::new(),
-        Box::new(|_, x, _| if x[0].iter().any(|&p| p > 0.5) { Err("phi too large".into()) } else { Ok(()) }),
+        Box::new(|_, x, _| if x[0].iter().any(|&p| p > 0.5) { Err("phi too large".into()) } else { Ok(1) }),
     );
-    let m: Box<dyn EffectiveViscosity> =
-        closure_from_value(table("type = \"rt_failing\""), Family::Viscosity, Path::new("s.toml"), "closures.viscosity")
-            .unwrap();
+    let m: Box<dyn EffectiveViscosity> = closure_from_value(
+        table("type = \"rt_failing\""),
+        Family::Viscosity,
+        Path::new("s.toml"),
+        "closures.viscosity",
+    )
+    .unwrap();
     let mut out = vec![1.0; 3];
     m.ratio_batch(&[0.1, 0.6, 0.2], &mut out);
     assert!(out.iter().all(|v| v.is_nan()));
@@ -164,7 +202,7 @@ fn a_hindrance_keeps_its_declared_convention() {
             for (o, &phi) in out[0].iter_mut().zip(x[0]) {
                 *o = (1.0 - phi).powf(-p[0]);
             }
-            Ok(())
+            Ok(1)
         }),
     );
     let m: Box<dyn Hindrance> = closure_from_value(
@@ -193,7 +231,7 @@ fn registration_refuses_what_a_scene_could_not_use() {
         limits: Vec::new(),
         convention: DragReynolds::Interstitial,
         depends_on_reynolds: true,
-        function: Arc::new(Function { law: Box::new(|_, _, _| Ok(())), calls: AtomicUsize::new(0) }),
+        function: Arc::new(Function { law: Box::new(|_, _, _| Ok(1)), calls: AtomicUsize::new(0) }),
         build,
     };
     let e = runtime::register(model(Family::Granular, "rt_mu", Vec::new())).unwrap_err();
@@ -210,7 +248,7 @@ fn registration_refuses_what_a_scene_could_not_use() {
         function: Arc::new(Function {
             law: Box::new(|_, _, out| {
                 out[0].fill(f64::INFINITY);
-                Ok(())
+                Ok(1)
             }),
             calls: AtomicUsize::new(0),
         }),

@@ -153,15 +153,20 @@ where
     for (k, v) in table.iter().filter(|(k, _)| *k != "type") {
         let Some(i) = model.params.iter().position(|p| p.name == *k) else {
             let known: Vec<String> = model.params.iter().map(|p| format!("`{}`", p.name)).collect();
-            let expected =
-                if known.is_empty() { "there are no fields".to_string() } else { format!("expected one of {}", known.join(", ")) };
+            let expected = if known.is_empty() {
+                "there are no fields".to_string()
+            } else {
+                format!("expected one of {}", known.join(", "))
+            };
             return Err(key_err(format!("{key}.{k}"), format!("unknown field `{k}`, {expected}")));
         };
         values[i] = match v {
             toml::Value::Float(x) => *x,
             // integers are read as reals, as serde reads them into an f64 field
             toml::Value::Integer(n) => *n as f64,
-            other => return Err(key_err(format!("{key}.{k}"), format!("expected a number, found {}", other.type_str()))),
+            other => {
+                return Err(key_err(format!("{key}.{k}"), format!("expected a number, found {}", other.type_str())))
+            }
         };
     }
     model.check_values(&values).map_err(|e| Error::from_param(file, key, e))?;
