@@ -154,7 +154,7 @@ fn param(name: &str, v: &Bound<'_, PyAny>) -> PyResult<Param> {
                     let (lo, hi): (f64, f64) = x.extract().map_err(|_| {
                         PyTypeError::new_err(format!("{what}[\"range\"]: an interval \"(0, 100]\" or a pair (lo, hi)"))
                     })?;
-                    if !(lo < hi) {
+                    if lo.is_nan() || hi.is_nan() || lo >= hi {
                         return Err(PyValueError::new_err(format!("{what}: range ({lo}, {hi}): lo must be below hi")));
                     }
                     // a pair is closed at its finite ends

@@ -71,8 +71,20 @@ fn table(text: &str) -> toml::Value {
     toml::Value::Table(text.parse().unwrap())
 }
 
+// the error is built once per failed load (as in saltus-solvers)
+#[allow(clippy::result_large_err)]
 fn drag(text: &str) -> saltus_core::Result<Box<dyn DragLaw>> {
     closure_from_value(table(text), Family::Drag, Path::new("scene.toml"), "closures.drag")
+}
+
+/// The model `name` of `family` with its defaults, as a scene loads it.
+fn load<T>(family: Family, name: &str) -> Box<T>
+where
+    T: ?Sized + Describe + runtime::FromRuntime,
+    Box<T>: serde::de::DeserializeOwned,
+{
+    let key = format!("closures.{family}");
+    closure_from_value(table(&format!("type = \"{name}\"")), family, Path::new("s.toml"), &key).unwrap()
 }
 
 #[test]
@@ -176,13 +188,7 @@ fn a_failing_law_gives_nan_keeps_its_message_and_is_not_called_again() {
         Vec::new(),
         Box::new(|_, x, _| if x[0].iter().any(|&p| p > 0.5) { Err("phi too large".into()) } else { Ok(1) }),
     );
-    let m: Box<dyn EffectiveViscosity> = closure_from_value(
-        table("type = \"rt_failing\""),
-        Family::Viscosity,
-        Path::new("s.toml"),
-        "closures.viscosity",
-    )
-    .unwrap();
+    let m: Box<dyn EffectiveViscosity> = load(Family::Viscosity, "rt_failing");
     let mut out = vec![1.0; 3];
     m.ratio_batch(&[0.1, 0.6, 0.2], &mut out);
     assert!(out.iter().all(|v| v.is_nan()));
@@ -205,13 +211,7 @@ fn a_hindrance_keeps_its_declared_convention() {
             Ok(1)
         }),
     );
-    let m: Box<dyn Hindrance> = closure_from_value(
-        table("type = \"rt_richardson_zaki\""),
-        Family::Hindrance,
-        Path::new("s.toml"),
-        "closures.hindrance",
-    )
-    .unwrap();
+    let m: Box<dyn Hindrance> = load(Family::Hindrance, "rt_richardson_zaki");
     let builtin = RichardsonZaki::default();
     assert!(!m.depends_on_reynolds());
     assert_eq!(m.reynolds_convention(), DragReynolds::Interstitial);
