@@ -228,3 +228,22 @@ def test_registration_refuses_what_cannot_work():
         saltus.register_closure("drag", "py_x", dallavalle, limits=["stoke"])
     with pytest.raises(TypeError, match="expected a function"):
         saltus.register_closure("drag", "py_x", 3.0)
+
+
+def test_a_python_viscosity_is_the_built_in_einstein_law(root):
+    def einstein(phi, coefficient):
+        """nu_eff / nu_f = 1 + coefficient phi"""
+        return {"nu_ratio": 1.0 + coefficient * phi}
+
+    saltus.register_closure(
+        "viscosity",
+        "py_einstein",
+        einstein,
+        params={"coefficient": {"default": 2.5, "range": "[0, 10]", "unit": "-", "description": "Einstein's 5/2"}},
+        limits=[("einstein", "coefficient"), "dilute", "increasing"],
+    )
+    report = saltus.closure_check("viscosity", {"type": "py_einstein"}, cases=64)
+    assert report.passed and "limit einstein" in report.text, report.text
+    builtin = saltus.run(root / CASE01, set={"closures.viscosity.type": "einstein"}, out=False)
+    python = saltus.run(root / CASE01, set={"closures.viscosity.type": "py_einstein"}, out=False)
+    assert_same_run(builtin, python)
