@@ -38,6 +38,7 @@ __all__ = [
     "models",
     "Closure",
     "register_closure",
+    "unregister_closure",
     "closure_check",
     "CheckReport",
     "Result",
@@ -453,6 +454,16 @@ def register_closure(
     _native.register_closure(
         family, name, evaluate, params, source, equation, limits, reynolds, bool(depends_on_reynolds)
     )
+
+
+def unregister_closure(family: str, name: str) -> bool:
+    """Remove a closure registered with :func:`register_closure`; whether there was one.
+    Scenes loaded afterwards no longer know the name; models already loaded keep it.
+
+    Raises:
+        ValueError: an unknown family.
+    """
+    return _native.unregister_closure(family, name)
 
 
 @dataclass(frozen=True, repr=False)

@@ -280,6 +280,12 @@ pub fn register_closure(
     .map_err(|e| PyValueError::new_err(format!("register_closure({family:?}, {name:?}): {e}")))
 }
 
+/// `saltus.unregister_closure`: whether `name` of `family` was registered at run time.
+#[pyfunction]
+pub fn unregister_closure(family: &str, name: &str) -> PyResult<bool> {
+    Ok(runtime::unregister(family_of(family)?, name))
+}
+
 /// `saltus.closure_check`: `saltus closure check --family F --model TOML`, as a dict.
 #[pyfunction]
 #[pyo3(signature = (family, model, cases=256))]

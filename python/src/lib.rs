@@ -452,6 +452,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(models, m)?)?;
     m.add_class::<Closure>()?;
     m.add_function(wrap_pyfunction!(closures::register_closure, m)?)?;
+    m.add_function(wrap_pyfunction!(closures::unregister_closure, m)?)?;
     m.add_function(wrap_pyfunction!(closures::closure_check, m)?)?;
     Ok(())
 }

@@ -64,6 +64,12 @@ def python_laws():
         limits=["dilute", "increasing"],
         depends_on_reynolds=False,
     )
+    yield
+    # the registry is the process's: leave the other test modules the built-in models only
+    for m in saltus.models():
+        if m.get("runtime"):
+            assert saltus.unregister_closure(m["family"], m["name"])
+    assert not any(m.get("runtime") for m in saltus.models())
 
 
 def timed_run(root, overrides):
