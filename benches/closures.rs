@@ -21,7 +21,7 @@ const N: usize = 200;
 
 fn model<T>(family: Family, text: &str) -> Box<T>
 where
-    T: ?Sized + saltus_core::Describe,
+    T: ?Sized + saltus_core::Describe + saltus_core::runtime::FromRuntime,
     Box<T>: serde::de::DeserializeOwned,
 {
     let t: toml::Table = text.parse().expect("bench model table");

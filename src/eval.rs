@@ -7,8 +7,8 @@ use std::path::Path;
 
 use anyhow::{anyhow, bail, Context};
 use saltus_core::closure::Family;
-use saltus_core::registry;
 use saltus_core::scene::{closure_from_value, to_toml_table};
+use saltus_core::{registry, runtime};
 use saltus_core::{
     ColumnView, Describe, DragLaw, EffectiveViscosity, Field, FlowScales, Fluctuation, GranularStress, Hindrance,
     ParticleSlip, Turbulence, TurbulencePoint,
@@ -41,9 +41,10 @@ impl EvalFamily {
     /// Input column names (required ones first; see [`EvalFamily::help`]).
     pub fn inputs(self) -> &'static [&'static str] {
         match self {
-            EvalFamily::Drag => &["re_p"],
-            EvalFamily::Hindrance => &["phi", "re_p"],
-            EvalFamily::Viscosity => &["phi"],
+            // the names of a closure registered at run time, defined once
+            EvalFamily::Drag | EvalFamily::Hindrance | EvalFamily::Viscosity => {
+                self.scene_family().and_then(runtime::io).map_or(&[], |(inputs, _)| inputs)
+            }
             EvalFamily::Granular => &["i (mu_i) or k (mu_k)"],
             EvalFamily::KineticTheory => &["phi"],
             EvalFamily::Turbulence => &["z", "phi", "dudz", "d"],
@@ -77,9 +78,9 @@ impl EvalFamily {
     /// Output column names.
     pub fn outputs(self) -> &'static [&'static str] {
         match self {
-            EvalFamily::Drag => &["cd"],
-            EvalFamily::Hindrance => &["factor"],
-            EvalFamily::Viscosity => &["nu_ratio"],
+            EvalFamily::Drag | EvalFamily::Hindrance | EvalFamily::Viscosity => {
+                self.scene_family().and_then(runtime::io).map_or(&[], |(_, outputs)| outputs)
+            }
             EvalFamily::Granular => &["mu", "phi"],
             EvalFamily::KineticTheory => &["g0", "f1", "f2", "f3", "f4", "e_eff"],
             EvalFamily::Turbulence => &["l_m", "nu_t"],
@@ -282,7 +283,10 @@ impl Model {
     pub fn registered_default(&self) -> Option<Box<dyn Describe>> {
         let family = self.family.scene_family()?;
         let name = self.describe().name();
-        registry::models_of(family).into_iter().find(|m| m.name == name).map(|m| (m.default)())
+        match registry::models_of(family).into_iter().find(|m| m.name == name) {
+            Some(m) => Some((m.default)()),
+            None => runtime::lookup(family, name).map(|m| Box::new((*m).clone()) as Box<dyn Describe>),
+        }
     }
 
     /// The family's output columns ([`EvalFamily::outputs`]) on the rows of `input`. Inputs

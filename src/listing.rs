@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use anyhow::Context;
 use saltus_core::closure::Family;
-use saltus_core::{registry, Choice, Describe};
+use saltus_core::{registry, runtime, Choice, Describe};
 
 /// The scene family named `name` (`drag`, `hindrance`, ...); the error lists the known ones.
 pub fn parse_family(name: &str) -> anyhow::Result<Family> {
@@ -22,9 +22,13 @@ pub fn text(family: Option<Family>) -> String {
     let mut s = String::new();
     for f in Family::ALL.into_iter().filter(|f| family.is_none_or(|g| g == *f)) {
         let _ = writeln!(s, "[closures.{}]  {}", f.key(), f.describe());
-        for m in registry::models_of(f) {
-            let d = (m.default)();
-            let _ = writeln!(s, "  {}", m.name);
+        let compiled = registry::models_of(f).into_iter().map(|m| ((m.default)(), (m.default_toml)()));
+        let at_run_time = runtime::models(Some(f)).into_iter().map(|m| {
+            let toml = runtime_toml(&m);
+            (Box::new((*m).clone()) as Box<dyn Describe>, toml)
+        });
+        for (d, toml) in compiled.chain(at_run_time) {
+            let _ = writeln!(s, "  {}", d.name());
             let _ = writeln!(s, "      equation: {}", d.equation());
             let _ = writeln!(s, "      source:   {}", d.source());
             let params = d.params();
@@ -46,7 +50,7 @@ pub fn text(family: Option<Family>) -> String {
             for c in choices {
                 let _ = writeln!(s, "{}", choice_line(&c));
             }
-            if let Ok(t) = (m.default_toml)() {
+            if let Ok(t) = toml {
                 let inline = t.lines().filter(|l| !l.trim().is_empty()).collect::<Vec<_>>().join("; ");
                 let _ = writeln!(s, "      toml:     {inline}");
             }
@@ -54,6 +58,17 @@ pub fn text(family: Option<Family>) -> String {
         s.push('\n');
     }
     s
+}
+
+/// The TOML table of a run-time closure's default instance, as a compiled model's
+/// `default_toml`.
+fn runtime_toml(m: &runtime::RuntimeModel) -> Result<String, String> {
+    let mut t = toml::Table::new();
+    t.insert("type".into(), toml::Value::String(m.name.into()));
+    for p in &m.params {
+        t.insert(p.name.clone(), toml::Value::Float(p.value));
+    }
+    toml::to_string(&t).map_err(|e| e.to_string())
 }
 
 /// Parameters of a configured model as JSON objects: the keys of [`json`]'s `parameters`
@@ -84,11 +99,13 @@ pub fn choice_line(c: &Choice) -> String {
 /// JSON listing (for tools).
 pub fn json(family: Option<Family>) -> serde_json::Value {
     let mut out = Vec::new();
-    for m in registry::models() {
-        if family.is_some_and(|f| f != m.family) {
+    let compiled = registry::models().into_iter().map(|m| (m.family, (m.default)(), false));
+    let at_run_time =
+        runtime::models(family).into_iter().map(|m| (m.family, Box::new((*m).clone()) as Box<dyn Describe>, true));
+    for (model_family, d, registered_at_run_time) in compiled.chain(at_run_time) {
+        if family.is_some_and(|f| f != model_family) {
             continue;
         }
-        let d = (m.default)();
         let params: Vec<_> = d
             .params()
             .into_iter()
@@ -104,10 +121,14 @@ pub fn json(family: Option<Family>) -> serde_json::Value {
             .into_iter()
             .map(|c| serde_json::json!({"name": c.name, "default": c.value, "allowed": c.allowed, "doc": c.doc}))
             .collect();
-        out.push(serde_json::json!({
-            "family": m.family.key(), "name": m.name, "equation": d.equation(),
+        let mut entry = serde_json::json!({
+            "family": model_family.key(), "name": d.name(), "equation": d.equation(),
             "source": d.source(), "parameters": params, "options": options
-        }));
+        });
+        if registered_at_run_time {
+            entry["runtime"] = serde_json::Value::Bool(true);
+        }
+        out.push(entry);
     }
     serde_json::Value::Array(out)
 }

@@ -213,7 +213,11 @@ fn eta(p: &Progress, phase_wall: f64) -> Option<f64> {
 pub fn load_checked(scene: &Path, set: &[String]) -> Result<Scene, saltus_core::Error> {
     let s = Scene::from_file_with(scene, set)?;
     saltus_solvers::validate(&s)?;
-    Ok(s)
+    // a closure registered at run time that failed while the solver was being set up
+    match s.closures.failure() {
+        Some(f) => Err(saltus_core::Error::Invalid(format!("{}: {f}", scene.display()))),
+        None => Ok(s),
+    }
 }
 
 /// Run `scene` into `out` as `settings` say, showing progress on `bar` (see
@@ -250,7 +254,9 @@ pub fn run_scene_with(
     let mut phase: Option<(Phase, Instant)> = None;
     let label = if bar.prefix().is_empty() { scene.meta.name.clone() } else { bar.prefix() };
     let mut observer = |p: &Progress| {
-        if stop(p) {
+        // a closure registered at run time that failed (its function raised) returns NaN
+        // from then on: stop at once, before the solver reports a breakdown
+        if stop(p) || scene.closures.failure().is_some() {
             return Control::Stop;
         }
         if phase.map(|(ph, _)| ph) != Some(p.phase) {
@@ -294,6 +300,7 @@ pub fn run_scene_with(
         }
     };
     let error = match &run.ending {
+        _ if scene.closures.failure().is_some() => scene.closures.failure(),
         Ending::Unstable(b) => Some(format!("unstable at {b}")),
         Ending::Interrupted => Some(format!("interrupted at t = {} s", decimal(run.report.summary.sim_time_s))),
         Ending::Steady | Ending::EndTime | Ending::MaxSteps => None,

@@ -29,7 +29,7 @@ fn model_names_are_unique_within_each_family() {
 
 fn round_trip<T>(family: Family)
 where
-    T: ?Sized + saltus_core::Describe,
+    T: ?Sized + saltus_core::Describe + saltus_core::runtime::FromRuntime,
     Box<T>: serde::de::DeserializeOwned + serde::Serialize,
 {
     for m in registry::models_of(family) {

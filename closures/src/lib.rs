@@ -12,6 +12,7 @@ pub mod drag;
 pub mod fluctuation;
 pub mod granular;
 pub mod hindrance;
+pub mod runtime;
 pub mod turbulence;
 pub mod viscosity;
 

@@ -7,7 +7,7 @@ use saltus_core::registry;
 /// parse it back through the scene machinery, serialise again, and get the same text.
 pub fn assert_round_trip<T>(family: Family)
 where
-    T: ?Sized + saltus_core::Describe,
+    T: ?Sized + saltus_core::Describe + saltus_core::runtime::FromRuntime,
     Box<T>: serde::de::DeserializeOwned + serde::Serialize,
 {
     let models = registry::models_of(family);
@@ -33,7 +33,7 @@ where
 /// machinery (so models added later are covered without writing a test).
 pub fn registered<T>(family: Family) -> Vec<Box<T>>
 where
-    T: ?Sized + saltus_core::Describe,
+    T: ?Sized + saltus_core::Describe + saltus_core::runtime::FromRuntime,
     Box<T>: serde::de::DeserializeOwned,
 {
     registry::models_of(family)

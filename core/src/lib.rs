@@ -22,6 +22,7 @@ pub mod needs;
 pub mod param;
 pub mod registry;
 pub mod rng;
+pub mod runtime;
 pub mod scene;
 
 pub use closure::drag::DragLaw;

@@ -72,6 +72,49 @@ impl ParamRange {
     }
 }
 
+impl std::str::FromStr for ParamRange {
+    type Err = String;
+
+    /// An interval as [`ParamRange`] displays it: `(0, 100]`, `[0, inf)`, `(-inf, inf)`
+    /// (an infinite end is open). The same grammar as the `range` attribute of
+    /// `#[derive(Describe)]`, read at run time (a closure registered from Python).
+    fn from_str(text: &str) -> Result<Self, String> {
+        let t = text.trim();
+        let why = |m: &str| format!("range `{text}`: {m}; write an interval such as \"(0, 100]\" or \"[0, inf)\"");
+        let (Some(first), Some(last)) = (t.chars().next(), t.chars().last()) else { return Err(why("empty")) };
+        let inner = t.get(1..t.len().saturating_sub(1)).filter(|_| t.len() >= 2).unwrap_or_default();
+        let Some((a, b)) = inner.split_once(',') else { return Err(why("two ends separated by a comma")) };
+        let end = |s: &str, open: bool, infinite: &[&str]| -> Result<Bound, String> {
+            let s = s.trim();
+            if infinite.contains(&s) {
+                return if open { Ok(Bound::Unbounded) } else { Err(why("an infinite end is open")) };
+            }
+            match s.parse::<f64>() {
+                Ok(x) if x.is_finite() => Ok(if open { Bound::Open(x) } else { Bound::Closed(x) }),
+                _ => Err(why(&format!("`{s}` is not a finite number"))),
+            }
+        };
+        let lo = match first {
+            '(' => end(a, true, &["-inf"])?,
+            '[' => end(a, false, &["-inf"])?,
+            _ => return Err(why("it must start with ( or [")),
+        };
+        let hi = match last {
+            ')' => end(b, true, &["inf", "+inf"])?,
+            ']' => end(b, false, &["inf", "+inf"])?,
+            _ => return Err(why("it must end with ) or ]")),
+        };
+        let value = |e: Bound, inf: f64| match e {
+            Bound::Open(x) | Bound::Closed(x) => x,
+            Bound::Unbounded => inf,
+        };
+        if value(lo, f64::NEG_INFINITY) >= value(hi, f64::INFINITY) {
+            return Err(why("the lower end must be below the upper end"));
+        }
+        Ok(ParamRange { lo, hi })
+    }
+}
+
 /// A number as a reader wants it in a message: plain between 1e-4 and 1e6, in
 /// exponent notation outside (1e-308 and f64::MAX would otherwise print with over 300
 /// digits), `NaN` and `inf` as such.
@@ -281,6 +324,13 @@ pub trait Describe {
     fn check_constraints(&self) -> Result<(), ParamError> {
         Ok(())
     }
+    /// The first error met while evaluating, which the `f64` methods of the family traits
+    /// cannot return: a closure registered at run time whose function raised (it then
+    /// returns NaN, and the run driver stops the run with this message). `None` for
+    /// compiled closures.
+    fn failure(&self) -> Option<String> {
+        None
+    }
     /// Check every parameter; the first violation is returned.
     fn validate(&self) -> Result<(), ParamError> {
         for p in self.params() {
@@ -312,6 +362,23 @@ mod tests {
         assert_eq!(decimal(0.0), "0.000000");
         assert_eq!(decimal(3.0), "3.000000");
         assert_eq!(decimal(7.29e-8), "7.29000e-8");
+    }
+
+    #[test]
+    fn ranges_read_back_from_their_display() {
+        for r in [
+            ParamRange::open_closed(0.0, 100.0),
+            ParamRange::closed(-1.5, 2.0),
+            ParamRange::non_negative(),
+            ParamRange::any(),
+            ParamRange::closed_open(1e-7, 0.6),
+        ] {
+            assert_eq!(r.to_string().parse::<ParamRange>(), Ok(r));
+        }
+        for bad in ["", "[1, 0]", "(0 1)", "[0, inf]", "0, 1", "[a, 1]", "[0, 1"] {
+            let e = bad.parse::<ParamRange>().unwrap_err();
+            assert!(e.starts_with(&format!("range `{bad}`")), "{e}");
+        }
     }
 
     #[test]

@@ -11,6 +11,9 @@ Every number comes from the Rust library; this module converts arguments and res
 >>> saltus.Closure("drag", {"type": "stokes"}).evaluate(re_p=[0.1, 1.0])["cd"]
 array([240.,  24.])
 
+A closure written in Python (:func:`register_closure`) is named in scenes like a built-in
+one and goes through the command line's property checks (:func:`closure_check`).
+
 Errors: bad input raises :class:`SceneError` (a ``ValueError``) with the message the
 command line prints; a run that cannot write its outputs raises :class:`RunError`.
 """
@@ -34,6 +37,10 @@ __all__ = [
     "check",
     "models",
     "Closure",
+    "register_closure",
+    "unregister_closure",
+    "closure_check",
+    "CheckReport",
     "Result",
     "SceneError",
     "RunError",
@@ -229,7 +236,8 @@ def check(scene: PathLike, set: Overrides = None, *, toml: bool = False) -> Unio
 def models(family: Optional[str] = None) -> List[Dict[str, Any]]:
     """Every registered closure model, as ``saltus models [FAMILY] --json``: a list of
     ``{"family", "name", "equation", "source", "parameters": [{"name", "default",
-    "range", "unit", "doc"}]}``.
+    "range", "unit", "doc"}]}``. Closures registered with :func:`register_closure` come
+    after the built-in ones, with ``"runtime": True``.
 
     Args:
         family: ``drag``, ``hindrance``, ``viscosity``, ``granular``, ``turbulence`` or
@@ -348,3 +356,163 @@ class Closure:
 
     def __repr__(self) -> str:
         return f"saltus.Closure({self.family!r}, {self.name!r})"
+
+
+def register_closure(
+    family: str,
+    name: str,
+    evaluate: Any,
+    params: Optional[Mapping[str, Any]] = None,
+    *,
+    source: Optional[str] = None,
+    equation: Optional[str] = None,
+    limits: Optional[List[Any]] = None,
+    reynolds: str = "interstitial",
+    depends_on_reynolds: bool = True,
+) -> None:
+    """Register a closure written in Python: scenes then name it by ``type = name`` in
+    ``[closures.<family>]`` (scene files and ``set=`` overrides alike), in both solvers;
+    :func:`models` lists it and :func:`closure_check` checks it.
+
+    ``evaluate`` is called with the family's inputs as keyword float64 arrays of one
+    length (the names :class:`Closure` takes) and every parameter as a keyword float, and
+    returns the family's outputs: a dict ``{"cd": array}``, or for one output the array
+    itself, float64 of the inputs' length, every value finite.
+
+    ==========  ====================================  ===========
+    family      inputs                                outputs
+    ==========  ====================================  ===========
+    drag        re_p                                  cd
+    hindrance   phi, re_p (interstitial Re_p)         factor
+    viscosity   phi                                   nu_ratio
+    ==========  ====================================  ===========
+
+    The other families (granular, turbulence, fluctuation) are refused: their traits are
+    not functions of arrays (a packing inverse solved by bisection, column views and
+    transported fields, a seeded random draw per particle).
+
+    Example, Dallavalle drag (Chassagne et al. 2023 eq 2.11a)::
+
+        def dallavalle(re_p, cd_inf, a):
+            return cd_inf + a / re_p
+
+        saltus.register_closure("drag", "py_dallavalle", dallavalle,
+            params={"cd_inf": {"default": 0.4, "range": "[0, 10]", "unit": "-",
+                               "description": "C_D at infinite Re_p"},
+                    "a": {"default": 24.4, "range": "(0, 100]", "unit": "-",
+                          "description": "viscous coefficient"}},
+            limits=[("stokes", "a"), "high_reynolds", "decreasing"])
+        saltus.run("case.toml", set={"closures.drag.type": "py_dallavalle"})
+
+    Args:
+        family: ``drag``, ``hindrance`` or ``viscosity``.
+        name: the ``type`` scenes use: letters, digits and ``_``, not a built-in name of
+            the family. Registering a name again replaces it (a notebook cell run
+            again); models already loaded keep the function they were built with.
+        evaluate: the function (called once per batch the solver evaluates: a column of
+            the Eulerian solver, a chunk of 256 particles of the DEM; never per cell).
+        params: parameter name -> default, or -> dict of ``default``, ``range`` (an
+            interval ``"(0, 100]"``, ``"[0, inf)"``, or a closed pair ``(lo, hi)``),
+            ``unit`` and ``description``. A scene's value outside the range is refused,
+            as an unknown key is, naming the file and the key.
+        source: where the law comes from (default: the function's module and name).
+        equation: the law, one line (default: the first line of the function's
+            docstring).
+        limits: what :func:`closure_check` verifies: ``"high_reynolds"`` (drag: C_D ->
+            its value at Re_p = 1e150), ``"dilute"`` (hindrance, viscosity: -> 1 as phi
+            -> 0), ``"decreasing"``, ``"increasing"``, ``("stokes", x)`` (drag: C_D Re_p
+            -> x as Re_p -> 0), ``("einstein", x)`` (viscosity: 1 + x phi); x a number or
+            a parameter's name.
+        reynolds: hindrance only, the Reynolds number at which the drag law's C_D is
+            evaluated: ``"interstitial"`` (Re_p) or ``"superficial"`` ((1 - phi) Re_p).
+        depends_on_reynolds: hindrance only; False lets the DEM evaluate the factor per
+            fluid cell (with re_p = 0) instead of per particle, as for the built-in
+            Richardson-Zaki.
+
+    How the solvers use it: C_D Re_p is C_D(r) r at r = max(Re_p, 1e-12) (finite at
+    rest); C_D^inf is C_D at Re_p = 1e150, taken when the scene loads. Python is entered
+    with the GIL held for each batch: a run with such a closure is not parallel in it.
+
+    Raises:
+        ValueError: an unknown or refused family, a name that is not usable, a default
+            outside its range, an unknown limit.
+        TypeError: ``evaluate`` is not callable, a parameter is not a number.
+
+    During a run, an exception raised by ``evaluate``, or outputs of the wrong shape or
+    dtype or not finite, end the run: :func:`run` raises :class:`RunError` with the
+    message (the exception's included).
+    """
+    if source is None:
+        module = getattr(evaluate, "__module__", None) or "?"
+        qualname = getattr(evaluate, "__qualname__", None) or type(evaluate).__name__
+        source = f"Python function {module}.{qualname}"
+    if equation is None:
+        doc = (getattr(evaluate, "__doc__", None) or "").strip()
+        equation = doc.splitlines()[0].strip() if doc else "Python function (no docstring)"
+    if params is not None and not isinstance(params, dict):
+        params = dict(params)
+    _native.register_closure(
+        family, name, evaluate, params, source, equation, limits, reynolds, bool(depends_on_reynolds)
+    )
+
+
+def unregister_closure(family: str, name: str) -> bool:
+    """Remove a closure registered with :func:`register_closure`; whether there was one.
+    Scenes loaded afterwards no longer know the name; models already loaded keep it.
+
+    Raises:
+        ValueError: an unknown family.
+    """
+    return _native.unregister_closure(family, name)
+
+
+@dataclass(frozen=True, repr=False)
+class CheckReport:
+    """The report of :func:`closure_check`.
+
+    Attributes:
+        family, model: what was checked.
+        passed: whether every check passed (``bool(report)`` too).
+        text: the report the command line prints.
+        outcomes: one dict per check: ``name``, ``passed``, ``summary`` and, on a
+            failure, ``input`` (the smallest failing input found), else None.
+    """
+
+    family: str
+    model: str
+    passed: bool
+    text: str
+    outcomes: List[Dict[str, Any]]
+
+    def __bool__(self) -> bool:
+        return self.passed
+
+    def __str__(self) -> str:
+        return self.text
+
+    def __repr__(self) -> str:
+        failed = sum(not o["passed"] for o in self.outcomes)
+        return f"<saltus.CheckReport {self.family} {self.model!r}: {failed} of {len(self.outcomes)} checks failed>"
+
+
+def closure_check(family: str, model: Union[Mapping[str, Any], str], *, cases: int = 256) -> CheckReport:
+    """The generic property checks of ``saltus closure check --family F --model TOML`` on a
+    closure, built-in or registered with :func:`register_closure`: parameters documented
+    with unit and range, TOML round trip, finite outputs over the parameter and input
+    ranges, batch equal to scalar bit for bit, each declared limit; a failing case shrunk
+    to the smallest input found.
+
+    Args:
+        family: the scene family (``drag``, ``hindrance``, ...).
+        model: the closure table with its ``type``, a dict or TOML text.
+        cases: random cases per property check.
+
+    Raises:
+        SceneError: the table does not load (unknown model or key, value out of range).
+    """
+    if isinstance(model, Mapping) and not isinstance(model, dict):
+        model = dict(model)
+    raw = _native.closure_check(family, model, int(cases))
+    return CheckReport(
+        family=raw["family"], model=raw["model"], passed=raw["passed"], text=raw["text"], outcomes=raw["outcomes"]
+    )

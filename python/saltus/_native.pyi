@@ -1,6 +1,6 @@
 """Type stubs of the Rust extension ``saltus._native`` (see ``saltus/__init__.py`` for the API)."""
 
-from typing import Any, Dict, Iterable, List, Mapping, Optional, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Tuple, Union
 
 import numpy as np
 
@@ -34,3 +34,17 @@ class Closure:
     def output_names(self) -> List[str]: ...
     def describe(self) -> Dict[str, Any]: ...
     def evaluate_arrays(self, inputs: Dict[str, np.ndarray], seed: int) -> Dict[str, np.ndarray]: ...
+
+def register_closure(
+    family: str,
+    name: str,
+    evaluate: Callable[..., Any],
+    params: Optional[Dict[str, Any]],
+    source: str,
+    equation: str,
+    limits: Optional[List[Any]],
+    reynolds: str,
+    depends_on_reynolds: bool,
+) -> None: ...
+def unregister_closure(family: str, name: str) -> bool: ...
+def closure_check(family: str, model: Union[Dict[str, Any], str], cases: int = 256) -> Dict[str, Any]: ...

@@ -6,9 +6,8 @@
 //! Python-facing API, with its documentation, is `python/saltus/__init__.py`; this module
 //! converts values and errors.
 //!
-//! Layout kept open to closures written in Python (a later `saltus.register_closure`): the
-//! closure front is the `Closure` class, built from a family and a table and evaluated on named
-//! arrays, the same contract a registered Python closure will fill.
+//! Closures written in Python (`saltus.register_closure`, module `closures`) take the
+//! contract of the `Closure` class: named arrays in, named arrays out.
 
 // saltus_core::Error carries file, key and message; it is built once per failed call,
 // never in a hot loop, so its size does not matter (as in saltus-solvers).
@@ -30,6 +29,8 @@ use saltus::{listing, runner};
 use saltus_core::scene::Scene;
 use saltus_core::Error;
 use saltus_solvers::Progress;
+
+mod closures;
 
 create_exception!(
     saltus,
@@ -280,6 +281,12 @@ fn run<'py>(
         };
         runner::run_scene_with(&s, &out, &bar, &settings, &mut stop)
     });
+    // a closure written in Python that raised (or returned something unusable) during the
+    // run: its message, whatever the solver made of the NaN it got
+    if let Some(f) = s.closures.failure() {
+        let place = Place { file: Some(scene.display().to_string()), key: None, io: false };
+        return Err(place.attach(py, RunError::new_err(f)));
+    }
     let outcome = result.map_err(|e| run_error(py, e))?;
     let (Some(ending), Some(report)) = (&outcome.ending, &outcome.report) else {
         return Err(RunError::new_err(outcome.error.clone().unwrap_or_else(|| "the run failed".into())));
@@ -444,5 +451,8 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(models, m)?)?;
     m.add_class::<Closure>()?;
+    m.add_function(wrap_pyfunction!(closures::register_closure, m)?)?;
+    m.add_function(wrap_pyfunction!(closures::unregister_closure, m)?)?;
+    m.add_function(wrap_pyfunction!(closures::closure_check, m)?)?;
     Ok(())
 }

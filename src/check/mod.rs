@@ -402,7 +402,13 @@ fn run_property<I: std::fmt::Debug + Clone>(
         if built.describe().validate().is_err() {
             return Err(TestCaseError::reject("constraint between parameters"));
         }
-        prop(&built, &x).map_err(TestCaseError::fail)
+        let result = prop(&built, &x);
+        // a closure registered at run time whose function failed gave NaN: its message
+        // says why, where the property would only see the NaN
+        match built.describe().failure() {
+            Some(f) => Err(TestCaseError::fail(f)),
+            None => result.map_err(TestCaseError::fail),
+        }
     });
     match result {
         Ok(()) => pass(name, summary),

@@ -3,6 +3,7 @@
 //! inside it reported with its full key path.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use serde::de::DeserializeOwned;
 use serde::Serialize;
@@ -13,6 +14,7 @@ use crate::closure::Family;
 use crate::error::{Error, Result};
 use crate::param::Describe;
 use crate::registry;
+use crate::runtime::{self, FromRuntime, RuntimeModel};
 use crate::{DragLaw, EffectiveViscosity, Fluctuation, GranularStress, Hindrance, Turbulence};
 
 /// The closures of a scene, one per family. Absent families take their defaults when the
@@ -58,7 +60,7 @@ pub fn de_concrete<T: DeserializeOwned>(value: toml::Value) -> std::result::Resu
 /// ones, and the parameters are range-checked.
 pub fn closure_from_value<T>(value: toml::Value, family: Family, file: &Path, key: &str) -> Result<Box<T>>
 where
-    T: ?Sized + Describe,
+    T: ?Sized + Describe + FromRuntime,
     Box<T>: DeserializeOwned,
 {
     closure_with(value, family, file, key, |_, _| ())
@@ -87,7 +89,7 @@ fn closure_with<T>(
     prepare: impl FnOnce(&mut Box<T>, &toml::Table),
 ) -> Result<Box<T>>
 where
-    T: ?Sized + Describe,
+    T: ?Sized + Describe + FromRuntime,
     Box<T>: DeserializeOwned,
 {
     let key_err = |k: String, message: String| Error::Key { file: file.into(), key: k, message };
@@ -120,6 +122,9 @@ where
         }
     };
     let Some(entry) = registry::models_of(family).into_iter().find(|m| m.name == name) else {
+        if let Some(model) = runtime::lookup(family, &name) {
+            return runtime_closure(&model, &table, file, key);
+        }
         return Err(Error::UnknownModel {
             file: file.into(),
             key: format!("{key}.type"),
@@ -146,6 +151,43 @@ where
     prepare(&mut model, &table);
     model.validate().map_err(|e| Error::from_param(file, key, e))?;
     Ok(model)
+}
+
+/// A closure registered at run time, from its table at key path `key`: every key one of
+/// its declared parameters (a number), each within its declared range, then built. The
+/// messages are those of compiled models (serde's for an unknown key).
+fn runtime_closure<T>(model: &Arc<RuntimeModel>, table: &toml::Table, file: &Path, key: &str) -> Result<Box<T>>
+where
+    T: ?Sized + Describe + FromRuntime,
+{
+    let key_err = |k: String, message: String| Error::Key { file: file.into(), key: k, message };
+    let mut values: Vec<f64> = model.params.iter().map(|p| p.value).collect();
+    for (k, v) in table.iter().filter(|(k, _)| *k != "type") {
+        let Some(i) = model.params.iter().position(|p| p.name == *k) else {
+            let known: Vec<String> = model.params.iter().map(|p| format!("`{}`", p.name)).collect();
+            let expected = if known.is_empty() {
+                "there are no fields".to_string()
+            } else {
+                format!("expected one of {}", known.join(", "))
+            };
+            return Err(key_err(format!("{key}.{k}"), format!("unknown field `{k}`, {expected}")));
+        };
+        values[i] = match v {
+            toml::Value::Float(x) => *x,
+            // integers are read as reals, as serde reads them into an f64 field
+            toml::Value::Integer(n) => *n as f64,
+            other => {
+                return Err(key_err(format!("{key}.{k}"), format!("expected a number, found {}", other.type_str())))
+            }
+        };
+    }
+    model.check_values(&values).map_err(|e| Error::from_param(file, key, e))?;
+    let built = (model.build)(model, values).map_err(|m| key_err(format!("{key}.type"), m))?;
+    let m = T::from_runtime(built).ok_or_else(|| {
+        Error::Invalid(format!("{}: key `{key}`: `{}` was registered for another family", file.display(), model.name))
+    })?;
+    m.validate().map_err(|e| Error::from_param(file, key, e))?;
+    Ok(m)
 }
 
 /// The first key of `given` holding something else than a table where `default` holds a
@@ -198,7 +240,7 @@ fn refine(params: &toml::Table, path: &str, message: &str) -> String {
 
 fn default_closure<T>(family: Family, file: &Path) -> Result<Box<T>>
 where
-    T: ?Sized + Describe,
+    T: ?Sized + Describe + FromRuntime,
     Box<T>: DeserializeOwned,
 {
     let name = DEFAULT_MODELS
@@ -275,6 +317,20 @@ impl Closures {
             c.fluctuation = Some(default_closure(Family::Fluctuation, file)?);
         }
         Ok(c)
+    }
+
+    /// The first evaluation error of a closure of the scene ([`Describe::failure`]): a
+    /// closure registered at run time whose function raised during a run.
+    pub fn failure(&self) -> Option<String> {
+        let each: [Option<&dyn Describe>; 6] = [
+            self.drag.as_deref().map(|m| m as &dyn Describe),
+            self.hindrance.as_deref().map(|m| m as &dyn Describe),
+            self.viscosity.as_deref().map(|m| m as &dyn Describe),
+            self.granular.as_deref().map(|m| m as &dyn Describe),
+            self.turbulence.as_deref().map(|m| m as &dyn Describe),
+            self.fluctuation.as_deref().map(|m| m as &dyn Describe),
+        ];
+        each.into_iter().flatten().find_map(Describe::failure)
     }
 
     /// Maximum packing of the granular closure (the kinetic phi_max, or the packing of a

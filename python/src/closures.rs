@@ -1,0 +1,321 @@
+//! Closures written in Python: `saltus.register_closure` puts a Python function in the
+//! run-time registry of saltus-core ([`saltus_core::runtime`]), where the scene loader, the
+//! model listing and `closure check` find it; `saltus.closure_check` runs the command
+//! line's property checks on any closure.
+//!
+//! The function is called with the GIL taken inside the call (runs release it, and the DEM
+//! calls drag from its rayon threads), once per batch the solver evaluates: a column, a
+//! chunk of particles. Its inputs are fresh float64 arrays, its parameters floats.
+
+use std::sync::Arc;
+
+use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyString, PyTuple};
+use saltus::check::{self, Options};
+use saltus_core::closure::Family;
+use saltus_core::param::{number, Bound as End, ParamRange};
+use saltus_core::runtime::{self, BatchFunction, RuntimeLimit, RuntimeModel};
+use saltus_core::{DragReynolds, Limit, Param};
+
+use crate::{json_to_py, py_to_toml, SceneError};
+
+/// A Python function as the law of a run-time closure.
+struct PyFunction {
+    function: Py<PyAny>,
+    family: Family,
+    params: Vec<String>,
+    inputs: &'static [&'static str],
+    outputs: &'static [&'static str],
+    optional: &'static [&'static str],
+}
+
+impl BatchFunction for PyFunction {
+    fn evaluate(&self, params: &[f64], inputs: &[&[f64]], outputs: &mut [&mut [f64]]) -> Result<usize, String> {
+        Python::attach(|py| self.call(py, params, inputs, outputs))
+    }
+}
+
+impl PyFunction {
+    fn call(
+        &self,
+        py: Python<'_>,
+        params: &[f64],
+        inputs: &[&[f64]],
+        outputs: &mut [&mut [f64]],
+    ) -> Result<usize, String> {
+        let raised = |e: PyErr| format!("the Python function raised {e}");
+        let kwargs = PyDict::new(py);
+        for (name, x) in self.inputs.iter().zip(inputs) {
+            kwargs.set_item(name, PyArray1::from_slice(py, x)).map_err(raised)?;
+        }
+        for (name, &v) in self.params.iter().zip(params) {
+            kwargs.set_item(name, v).map_err(raised)?;
+        }
+        let ret = self.function.bind(py).call((), Some(&kwargs)).map_err(raised)?;
+        let n = inputs.first().map_or(0, |x| x.len());
+        if let Ok(d) = ret.cast::<PyDict>() {
+            let known = || {
+                let optional = self.optional.iter().map(|o| format!(" (optional: {o})"));
+                format!("{}{}", self.outputs.join(", "), optional.collect::<String>())
+            };
+            for k in d.keys() {
+                let k = k.str().map(|s| s.to_string()).unwrap_or_default();
+                if !self.outputs.contains(&k.as_str()) && !self.optional.contains(&k.as_str()) {
+                    return Err(format!("the Python function returned `{k}`; the outputs are {}", known()));
+                }
+            }
+            let mut written = 0;
+            let names = self.outputs.iter().map(|n| (n, true)).chain(self.optional.iter().map(|n| (n, false)));
+            for ((name, required), out) in names.zip(outputs.iter_mut()) {
+                let Some(v) = d.get_item(name).map_err(raised)? else {
+                    if required {
+                        return Err(format!("the Python function returned no `{name}`; the outputs are {}", known()));
+                    }
+                    break;
+                };
+                self.copy(&v, name, inputs, out)?;
+                written += 1;
+            }
+            return Ok(written);
+        }
+        match (self.outputs, outputs) {
+            ([name], [out, ..]) => self.copy(&ret, name, inputs, out).map(|()| 1),
+            _ => Err(format!(
+                "the Python function returned {}; expected a dict of {} (float64 arrays of {n} values)",
+                shown(&ret),
+                self.outputs.join(", ")
+            )),
+        }
+    }
+
+    /// Output `name` from `v` into `out`: a 1-D float64 array of the inputs' length, every
+    /// value finite (C_D may be +inf at Re_p = 0).
+    fn copy(&self, v: &Bound<'_, PyAny>, name: &str, inputs: &[&[f64]], out: &mut [f64]) -> Result<(), String> {
+        let n = out.len();
+        let wrong = || format!("output `{name}` is {}; expected a float64 array of shape ({n},)", shown(v));
+        let a: PyReadonlyArray1<'_, f64> = v.extract().map_err(|_| wrong())?;
+        let a = a.as_array();
+        if a.len() != n {
+            return Err(wrong());
+        }
+        for (i, (o, &x)) in out.iter_mut().zip(a.iter()).enumerate() {
+            if !runtime::accepts(self.family, name, x, inputs, i) {
+                let at: Vec<String> =
+                    self.inputs.iter().zip(inputs).map(|(k, c)| format!("{k} = {}", number(c[i]))).collect();
+                return Err(format!("output `{name}` = {} at {}: not a finite number", number(x), at.join(", ")));
+            }
+            *o = x;
+        }
+        Ok(())
+    }
+}
+
+/// What a returned object is, for a message: an array's dtype and shape, else its type.
+fn shown(v: &Bound<'_, PyAny>) -> String {
+    match (v.getattr("dtype"), v.getattr("shape")) {
+        (Ok(d), Ok(s)) => format!("an array of dtype {d} and shape {s}"),
+        _ => format!("a {}", v.get_type().name().map_or_else(|_| "?".to_string(), |n| n.to_string())),
+    }
+}
+
+fn leak(s: String) -> &'static str {
+    // a registration lives as long as the process; Describe hands its strings out as 'static
+    Box::leak(s.into_boxed_str())
+}
+
+fn family_of(family: &str) -> PyResult<Family> {
+    saltus::listing::parse_family(family).map_err(|e| PyValueError::new_err(format!("{e:#}")))
+}
+
+/// One `params=` entry: a default, or a dict of `default`, `range`, `unit`, `description`.
+fn param(name: &str, v: &Bound<'_, PyAny>) -> PyResult<Param> {
+    let what = format!("params[{name:?}]");
+    let real = |x: &Bound<'_, PyAny>, key: &str| -> PyResult<f64> {
+        x.extract::<f64>().map_err(|_| PyTypeError::new_err(format!("{what}{key}: expected a number, found {x}")))
+    };
+    let Ok(d) = v.cast::<PyDict>() else {
+        return Ok(Param::new(name, real(v, "")?, ParamRange::any(), "", ""));
+    };
+    let mut p = Param::new(name, f64::NAN, ParamRange::any(), "", "");
+    let mut has_default = false;
+    for (k, x) in d.iter() {
+        let k: String = k.extract()?;
+        match k.as_str() {
+            "default" => {
+                p.value = real(&x, "[\"default\"]")?;
+                has_default = true;
+            }
+            "range" => {
+                p.range = if let Ok(s) = x.cast::<PyString>() {
+                    s.to_cow()?.parse().map_err(|e: String| PyValueError::new_err(format!("{what}: {e}")))?
+                } else {
+                    let (lo, hi): (f64, f64) = x.extract().map_err(|_| {
+                        PyTypeError::new_err(format!("{what}[\"range\"]: an interval \"(0, 100]\" or a pair (lo, hi)"))
+                    })?;
+                    if lo.is_nan() || hi.is_nan() || lo >= hi {
+                        return Err(PyValueError::new_err(format!("{what}: range ({lo}, {hi}): lo must be below hi")));
+                    }
+                    // a pair is closed at its finite ends
+                    let end = |e: f64| if e.is_infinite() { End::Unbounded } else { End::Closed(e) };
+                    ParamRange { lo: end(lo), hi: end(hi) }
+                }
+            }
+            "unit" => p.unit = leak(x.extract()?),
+            "description" | "doc" => p.doc = leak(x.extract()?),
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "{what}: unknown key `{other}`; known: default, range, unit, description"
+                )))
+            }
+        }
+    }
+    if !has_default {
+        return Err(PyValueError::new_err(format!("{what}: no \"default\"")));
+    }
+    Ok(p)
+}
+
+/// One `limits=` entry: a name, or (name, number or parameter name).
+fn limit(v: &Bound<'_, PyAny>, params: &[Param]) -> PyResult<RuntimeLimit> {
+    const KNOWN: &str =
+        "\"high_reynolds\", \"dilute\", \"decreasing\", \"increasing\", (\"stokes\", x), (\"einstein\", x)";
+    let bad = || PyValueError::new_err(format!("limits: {v} is not a limit; known: {KNOWN}"));
+    if let Ok(s) = v.extract::<String>() {
+        return Ok(RuntimeLimit::Fixed(match s.as_str() {
+            "high_reynolds" => Limit::HighReynolds,
+            "dilute" => Limit::Dilute,
+            "decreasing" => Limit::Decreasing,
+            "increasing" => Limit::Increasing,
+            "stokes" => Limit::Stokes { cd_re: 24.0 },
+            "einstein" => Limit::Einstein { coefficient: 2.5 },
+            _ => return Err(bad()),
+        }));
+    }
+    let (kind, x): (String, Bound<'_, PyAny>) = v.extract().map_err(|_| bad())?;
+    if let Ok(p) = x.extract::<String>() {
+        let i = params
+            .iter()
+            .position(|q| q.name == p)
+            .ok_or_else(|| PyValueError::new_err(format!("limits: ({kind:?}, {p:?}): no parameter `{p}` in params")))?;
+        return match kind.as_str() {
+            "stokes" => Ok(RuntimeLimit::StokesParam(i)),
+            "einstein" => Ok(RuntimeLimit::EinsteinParam(i)),
+            _ => Err(bad()),
+        };
+    }
+    let x: f64 = x.extract().map_err(|_| bad())?;
+    match kind.as_str() {
+        "stokes" => Ok(RuntimeLimit::Fixed(Limit::Stokes { cd_re: x })),
+        "einstein" => Ok(RuntimeLimit::Fixed(Limit::Einstein { coefficient: x })),
+        _ => Err(bad()),
+    }
+}
+
+/// `saltus.register_closure`: see `python/saltus/__init__.py`.
+#[pyfunction]
+#[pyo3(signature = (family, name, evaluate, params, source, equation, limits, reynolds, depends_on_reynolds))]
+#[allow(clippy::too_many_arguments)]
+pub fn register_closure(
+    family: &str,
+    name: &str,
+    evaluate: &Bound<'_, PyAny>,
+    params: Option<&Bound<'_, PyDict>>,
+    source: String,
+    equation: String,
+    limits: Option<&Bound<'_, PyAny>>,
+    reynolds: &str,
+    depends_on_reynolds: bool,
+) -> PyResult<()> {
+    let fam = family_of(family)?;
+    let (inputs, outputs) = runtime::io(fam).ok_or_else(|| PyValueError::new_err(runtime::refused(fam)))?;
+    if !evaluate.is_callable() {
+        return Err(PyTypeError::new_err(format!("evaluate: expected a function, found {evaluate}")));
+    }
+    let params: Vec<Param> = match params {
+        Some(d) => d.iter().map(|(k, v)| param(&k.extract::<String>()?, &v)).collect::<PyResult<_>>()?,
+        None => Vec::new(),
+    };
+    let clash = params.iter().find(|p| inputs.contains(&p.name.as_str()));
+    if let Some(p) = clash {
+        return Err(PyValueError::new_err(format!("params: `{}` is an input of the {fam} family", p.name)));
+    }
+    let limits: Vec<RuntimeLimit> = match limits.filter(|l| !l.is_none()) {
+        Some(l) if l.is_instance_of::<PyList>() || l.is_instance_of::<PyTuple>() => {
+            l.try_iter()?.map(|x| limit(&x?, &params)).collect::<PyResult<_>>()?
+        }
+        Some(l) => return Err(PyTypeError::new_err(format!("limits: expected a list, found {l}"))),
+        None => Vec::new(),
+    };
+    let convention = match reynolds {
+        "interstitial" => DragReynolds::Interstitial,
+        "superficial" => DragReynolds::Superficial,
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "reynolds: `{other}`; allowed: \"interstitial\" (Re_p), \"superficial\" ((1 - phi) Re_p)"
+            )))
+        }
+    };
+    let function = PyFunction {
+        function: evaluate.clone().unbind(),
+        family: fam,
+        params: params.iter().map(|p| p.name.clone()).collect(),
+        inputs,
+        outputs,
+        optional: runtime::optional_outputs(fam),
+    };
+    runtime::register(RuntimeModel {
+        family: fam,
+        name: leak(name.to_string()),
+        source: leak(source),
+        equation: leak(equation),
+        params,
+        limits,
+        convention,
+        depends_on_reynolds,
+        function: Arc::new(function),
+        build: saltus_closures::runtime::build,
+    })
+    .map_err(|e| PyValueError::new_err(format!("register_closure({family:?}, {name:?}): {e}")))
+}
+
+/// `saltus.unregister_closure`: whether `name` of `family` was registered at run time.
+#[pyfunction]
+pub fn unregister_closure(family: &str, name: &str) -> PyResult<bool> {
+    Ok(runtime::unregister(family_of(family)?, name))
+}
+
+/// `saltus.closure_check`: `saltus closure check --family F --model TOML`, as a dict.
+#[pyfunction]
+#[pyo3(signature = (family, model, cases=256))]
+pub fn closure_check<'py>(
+    py: Python<'py>,
+    family: &str,
+    model: &Bound<'py, PyAny>,
+    cases: u32,
+) -> PyResult<Bound<'py, PyAny>> {
+    let fam = family_of(family)?;
+    let scene_error = |e: anyhow::Error| SceneError::new_err(saltus::describe(&e));
+    let value = if let Ok(text) = model.cast::<PyString>() {
+        check::parse_model(&text.to_cow()?).map_err(scene_error)?
+    } else if model.is_instance_of::<PyDict>() {
+        py_to_toml(model, "model")?
+    } else {
+        return Err(PyTypeError::new_err("model: expected a dict or a TOML string"));
+    };
+    let report = py.detach(|| check::check(fam, value, Options { cases })).map_err(scene_error)?;
+    let outcomes: Vec<serde_json::Value> = report
+        .outcomes
+        .iter()
+        .map(|o| serde_json::json!({"name": o.name, "passed": o.passed, "summary": o.summary, "input": o.input}))
+        .collect();
+    let d = serde_json::json!({
+        "family": report.family.key(),
+        "model": report.model,
+        "passed": report.passed(),
+        "text": report.text(),
+        "outcomes": outcomes,
+    });
+    json_to_py(py, &d)
+}
