@@ -30,7 +30,7 @@ impl Lagrangian<'_> {
         while self.settle_steps < end {
             let update = self.settle_steps.is_multiple_of(self.fluid_every) && fluid;
             let checkpoint = self.settle_steps.is_multiple_of(CHECK_STEPS);
-            self.dem_step(update);
+            self.dem_step(update, false);
             self.settle_steps += 1;
             if update {
                 self.average();

@@ -8,6 +8,7 @@ pub mod contact;
 pub mod dem;
 mod deposition;
 pub mod drag;
+pub mod granular;
 pub mod neighbours;
 pub mod particles;
 pub mod report;
