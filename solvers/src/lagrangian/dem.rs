@@ -20,7 +20,7 @@
 use rayon::prelude::*;
 
 use super::contact::{contact_force, cross, ContactInput, ContactLaw};
-use super::granular::{contact_values, spread, ContactSums, Slices, WallRecord, CONTACT_FIELDS, GROUP};
+use super::granular::{contact_values, spread, ContactSums, End, Slices, WallRecord, GROUP};
 use super::neighbours::NeighbourList;
 use super::particles::{Box3, Particles};
 
@@ -254,7 +254,8 @@ impl Dem {
                         let (a, b) = (li[q] as usize, lj[q] as usize);
                         let values =
                             contact_values(d, f, [p.vx[a], p.vy[a], p.vz[a]], [p.vx[b], p.vy[b], p.vz[b]], power, 1.0);
-                        spread(&slices, slab, p.z[a], p.z[a] + d[2], &values);
+                        let ends = (End { z: p.z[a], r: p.radius[a] }, End { z: p.z[a] + d[2], r: p.radius[b] });
+                        spread(&slices, slab, ends.0, ends.1, &values);
                     }
                 }
             });
@@ -338,9 +339,8 @@ impl Dem {
                             let arm = [n[0] * gap, n[1] * gap, n[2] * gap];
                             let values = contact_values(arm, fw, [vx[k], vy[k], vz[k]], [0.0; 3], power, 0.5);
                             let r: &mut WallRecord = &mut rec[k][w];
-                            r[0] = pos[2];
-                            r[1] = pos[2] + arm[2];
-                            r[2..2 + CONTACT_FIELDS].copy_from_slice(&values);
+                            r[..3].copy_from_slice(&[pos[2], ra, pos[2] + arm[2]]);
+                            r[3..].copy_from_slice(&values);
                         }
                         for c in 0..3 {
                             f[c] += fw[c];

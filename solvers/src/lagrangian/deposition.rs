@@ -137,6 +137,9 @@ impl Lagrangian<'_> {
         self.beta = v(0.0);
         self.tau_t = v(0.0);
         self.stats = Stats::new(cells);
+        if self.granular.is_some() {
+            self.granular = Some(super::granular::GranularStats::new(cells));
+        }
         self.zero_faces = vec![0.0; cells + 1];
         self.cell_volume = self.cfg.domain.length * self.cfg.domain.width * dz;
         self.bed_surface = surface;

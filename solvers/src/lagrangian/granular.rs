@@ -103,9 +103,10 @@ const COUNT: usize = 7;
 /// slabs, and the order they are added in, are the same whatever the number of threads.
 pub const GROUP: usize = 16 * CHUNK;
 
-/// A wall contact of one particle as recorded by the integration: the heights of the
-/// branch's ends, then the [`CONTACT_FIELDS`] values (all zero without contact).
-pub type WallRecord = [f64; CONTACT_FIELDS + 2];
+/// A wall contact of one particle as recorded by the integration: the centre height and
+/// radius of the particle, the height where its branch meets the wall, then the
+/// [`CONTACT_FIELDS`] values (all zero without contact).
+pub type WallRecord = [f64; CONTACT_FIELDS + 3];
 
 /// The averaging slices in particle coordinates: `n` slices of height `dz` from `base`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -118,32 +119,85 @@ pub struct Slices {
     pub n: usize,
 }
 
+/// One end of a branch vector: a grain of centre height `z` and radius `r`, or a point
+/// (`r` = 0: where a branch meets a wall).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct End {
+    /// height (m)
+    pub z: f64,
+    /// radius (m), 0 for a point
+    pub r: f64,
+}
+
+impl End {
+    /// int_{-inf}^h (fraction of the end below z') dz' (m): for a grain, the integral of
+    /// its cap volume (pi s^2 (3r - s) / 3, s = h - (z - r)) over its volume,
+    /// (pi (r s^3 - s^4 / 4) / 3 + V (h - z - r)^+) / V; for a point, (h - z)^+.
+    #[inline(always)]
+    fn below(&self, h: f64) -> f64 {
+        if self.r <= 0.0 {
+            return (h - self.z).max(0.0);
+        }
+        let r = self.r;
+        let s = (h - (self.z - r)).clamp(0.0, 2.0 * r);
+        let s3 = s * s * s;
+        (r * s3 - 0.25 * s3 * s) / (4.0 * r * r * r) + (h - self.z - r).max(0.0)
+    }
+
+    /// Fraction of the end between heights `h0` and `h1`.
+    #[inline(always)]
+    fn share(&self, h0: f64, h1: f64) -> f64 {
+        if self.r <= 0.0 {
+            return if self.z >= h0 && self.z < h1 { 1.0 } else { 0.0 };
+        }
+        let v = 4.0 / 3.0 * std::f64::consts::PI * self.r.powi(3);
+        (super::averaging::cap_volume(self.z, self.r, h1) - super::averaging::cap_volume(self.z, self.r, h0)) / v
+    }
+}
+
 impl Slices {
-    /// Call `f(c, w)` for every slice c that the segment from height `za` to `zb`
-    /// crosses, w being the fraction of the segment inside it (of its z-extent; the
-    /// whole of a horizontal segment goes to the slice holding it). Parts outside the
-    /// slices are dropped.
+    /// Call `f(c, w)` for every slice c the contact of ends `a` and `b` reaches, w being
+    /// the share of the contact in it:
+    ///
+    /// ```text
+    /// w_c = int_{slice c} [S_a(z) - S_b(z)] dz / (z_b - z_a)
+    /// ```
+    ///
+    /// with S the fraction of an end below z: the branch from a to b, each end smeared
+    /// over its grain like phi is (Maurin eq A1), so that the contact stress's divergence
+    /// is exactly the contact forces weighted as phi weights them (module
+    /// documentation). The shares add up to 1 over the slices (parts outside the slices
+    /// are dropped); a horizontal branch (|z_b - z_a| below 1e-9 of the radii) takes the
+    /// limit, the mean of the two ends' volume shares.
     #[inline]
-    pub fn segment(&self, za: f64, zb: f64, mut f: impl FnMut(usize, f64)) {
-        let (lo, hi) = if za <= zb { (za - self.base, zb - self.base) } else { (zb - self.base, za - self.base) };
-        let top = self.n as f64 * self.dz;
+    pub fn branch(&self, a: End, b: End, mut f: impl FnMut(usize, f64)) {
+        let (dz, base) = (self.dz, self.base);
+        if !(a.z.is_finite() && b.z.is_finite()) {
+            return;
+        }
+        let lo = (a.z - a.r).min(b.z - b.r) - base;
+        let hi = (a.z + a.r).max(b.z + b.r) - base;
         // compared so that NaN falls out too
-        if !(hi >= 0.0 && lo < top) {
+        if !(hi >= 0.0 && lo < self.n as f64 * dz) {
             return;
         }
-        let len = hi - lo;
-        if len <= 0.0 {
-            f(((lo / self.dz) as usize).min(self.n - 1), 1.0);
-            return;
-        }
-        let first = ((lo / self.dz).floor().max(0.0)) as usize;
-        let last = ((hi / self.dz).floor() as usize).min(self.n - 1);
-        for c in first..=last {
-            let a = (c as f64 * self.dz).max(lo);
-            let b = ((c + 1) as f64 * self.dz).min(hi);
-            if b > a {
-                f(c, (b - a) / len);
+        let first = ((lo / dz).floor().max(0.0)) as usize;
+        let last = ((hi / dz).floor() as usize).min(self.n - 1);
+        let rise = b.z - a.z;
+        let face = |c: usize| base + c as f64 * dz;
+        if rise.abs() <= 1e-9 * (a.r + b.r) {
+            for c in first..=last {
+                let (h0, h1) = (face(c), face(c + 1));
+                f(c, 0.5 * (a.share(h0, h1) + b.share(h0, h1)));
             }
+            return;
+        }
+        let mut below = a.below(face(first)) - b.below(face(first));
+        for c in first..=last {
+            let h1 = face(c + 1);
+            let upto = a.below(h1) - b.below(h1);
+            f(c, (upto - below) / rise);
+            below = upto;
         }
     }
 }
@@ -164,11 +218,11 @@ pub fn contact_values(
     [-f[0] * b[0], -f[1] * b[1], -f[2] * b[2], -f[0] * b[2], -f[1] * b[2], -b[2] * work, power, count]
 }
 
-/// Add `values` of a contact whose branch runs from height `za` to `zb` into `slab`
-/// (slice-major, [`CONTACT_FIELDS`] per slice).
+/// Add `values` of the contact of ends `a` and `b` into `slab` (slice-major,
+/// [`CONTACT_FIELDS`] per slice), divided as [`Slices::branch`] divides it.
 #[inline(always)]
-pub fn spread(slices: &Slices, slab: &mut [f64], za: f64, zb: f64, values: &[f64; CONTACT_FIELDS]) {
-    slices.segment(za, zb, |c, w| {
+pub fn spread(slices: &Slices, slab: &mut [f64], a: End, b: End, values: &[f64; CONTACT_FIELDS]) {
+    slices.branch(a, b, |c, w| {
         let row = &mut slab[c * CONTACT_FIELDS..(c + 1) * CONTACT_FIELDS];
         for (r, v) in row.iter_mut().zip(values) {
             *r += w * v;
@@ -195,7 +249,7 @@ impl ContactSums {
         self.slabs.clear();
         self.slabs.resize(pairs.div_ceil(GROUP).max(1) * slices.n * CONTACT_FIELDS, 0.0);
         self.walls.clear();
-        self.walls.resize(mobile, [[0.0; CONTACT_FIELDS + 2]; MAX_WALLS]);
+        self.walls.resize(mobile, [[0.0; CONTACT_FIELDS + 3]; MAX_WALLS]);
     }
 
     /// Length of one slab.
@@ -210,9 +264,9 @@ impl ContactSums {
             out.iter_mut().zip(slab).for_each(|(o, s)| *o += s);
         }
         for rec in self.walls.iter().flatten() {
-            if rec[2 + COUNT] > 0.0 {
-                let values: &[f64; CONTACT_FIELDS] = rec[2..].try_into().unwrap_or(&[0.0; CONTACT_FIELDS]);
-                spread(&self.slices, out, rec[0], rec[1], values);
+            if rec[3 + COUNT] > 0.0 {
+                let values: &[f64; CONTACT_FIELDS] = rec[3..].try_into().unwrap_or(&[0.0; CONTACT_FIELDS]);
+                spread(&self.slices, out, End { z: rec[0], r: rec[1] }, End { z: rec[2], r: 0.0 }, values);
             }
         }
     }
@@ -439,53 +493,85 @@ fn set3(mut a: [Vec<f64>; 3], c: usize, v: [f64; 3]) -> [Vec<f64>; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lagrangian::averaging::cap_volume;
 
-    #[test]
-    fn a_branch_across_a_face_splits_its_stress_in_proportion_to_its_length() {
-        // a pair in contact whose branch runs from z = 0.3 dz to z = 1.55 dz (slices of
-        // 1 mm): 0.7 / 1.25 of it in slice 0, 0.55 / 1.25 in slice 1; each slice gets that
-        // share of -f_i b_j, and the two add up to the whole
-        let slices = Slices { base: 0.0, dz: 1e-3, n: 4 };
-        let (za, b) = (0.3e-3, [0.4e-3, -0.2e-3, 1.25e-3]);
-        let f = [0.3, 0.1, -2.0];
-        let vals = contact_values(b, f, [0.1, 0.0, 0.0], [0.2, 0.0, 0.05], 0.7, 1.0);
-        let mut slab = vec![0.0; slices.n * CONTACT_FIELDS];
-        spread(&slices, &mut slab, za, za + b[2], &vals);
-        let shares = [0.7 / 1.25, 0.55 / 1.25];
-        let whole = [-f[0] * b[0], -f[1] * b[1], -f[2] * b[2], -f[0] * b[2], -f[1] * b[2]];
-        for (c, share) in shares.iter().enumerate() {
-            for (k, total) in whole.iter().enumerate() {
-                let got = slab[c * CONTACT_FIELDS + k];
-                assert!((got - share * total).abs() <= 1e-12 * total.abs(), "slice {c}, field {k}: {got}");
-            }
-            assert!((slab[c * CONTACT_FIELDS + COUNT] - share).abs() < 1e-12);
-        }
-        for k in 0..CONTACT_FIELDS {
-            let sum = slab[k] + slab[CONTACT_FIELDS + k];
-            assert!((sum - vals[k]).abs() <= 1e-12 * vals[k].abs(), "field {k}");
-            assert!(slab[2 * CONTACT_FIELDS + k] == 0.0 && slab[3 * CONTACT_FIELDS + k] == 0.0);
-        }
-        // P_zz of the slice the branch crosses whole is the force across it over A
-        let mut slab = vec![0.0; slices.n * CONTACT_FIELDS];
-        spread(&slices, &mut slab, 0.5e-3, 2.5e-3, &contact_values([0.0, 0.0, 2e-3], f, [0.0; 3], [0.0; 3], 0.0, 1.0));
-        assert!((slab[CONTACT_FIELDS + PZZ] / slices.dz - (-f[2])).abs() < 1e-12);
-        // compressive: a force pushing a away from its partner gives P_zz > 0
-        assert!(slab[CONTACT_FIELDS + PZZ] > 0.0);
+    /// int over [h0, h1] of (S_a - S_b) / (z_b - z_a) by Simpson's rule on the cap
+    /// volumes: an independent evaluation of the shares.
+    fn quadrature(a: End, b: End, h0: f64, h1: f64) -> f64 {
+        let frac = |e: End, h: f64| cap_volume(e.z, e.r, h) / (4.0 / 3.0 * std::f64::consts::PI * e.r.powi(3));
+        let g = |h: f64| frac(a, h) - frac(b, h);
+        let n = 20_000;
+        let step = (h1 - h0) / n as f64;
+        let sum: f64 = (0..=n)
+            .map(|k| {
+                let w = if k == 0 || k == n {
+                    1.0
+                } else if k % 2 == 1 {
+                    4.0
+                } else {
+                    2.0
+                };
+                w * g(h0 + k as f64 * step)
+            })
+            .sum();
+        sum * step / 3.0 / (b.z - a.z)
     }
 
     #[test]
-    fn segments_outside_or_horizontal() {
+    fn a_contact_across_a_slice_face_splits_its_stress_exactly() {
+        // two grains of d = 1 mm in contact, branch (0.55, 0, 0.8) mm from z = 1.2 mm,
+        // slices of 1 mm: the contact reaches slices 0 to 2, most of it in slices 1 and 2
+        // either side of the face at 2 mm. Each slice gets its share w_c of every value,
+        // the shares are the integrals of (S_a - S_b) / (z_b - z_a) (checked against
+        // quadrature) and add up to 1, so the slices hold the whole contact
+        let slices = Slices { base: 0.0, dz: 1e-3, n: 4 };
+        let (a, b) = (End { z: 1.2e-3, r: 0.5e-3 }, End { z: 2.0e-3, r: 0.5e-3 });
+        let branch = [0.55e-3, 0.0, 0.8e-3];
+        let f = [0.3, 0.1, -2.0];
+        let vals = contact_values(branch, f, [0.1, 0.0, 0.0], [0.2, 0.0, 0.05], 0.7, 1.0);
+        let mut slab = vec![0.0; slices.n * CONTACT_FIELDS];
+        spread(&slices, &mut slab, a, b, &vals);
+        let mut total = 0.0;
+        for c in 0..slices.n {
+            let share = quadrature(a, b, c as f64 * 1e-3, (c + 1) as f64 * 1e-3);
+            total += share;
+            for k in 0..CONTACT_FIELDS {
+                let got = slab[c * CONTACT_FIELDS + k];
+                assert!((got - share * vals[k]).abs() <= 1e-9 * vals[k].abs(), "slice {c}, field {k}: {got}");
+            }
+        }
+        assert!((total - 1.0).abs() < 1e-9, "{total}");
+        let (s1, s2) = (slab[CONTACT_FIELDS + COUNT], slab[2 * CONTACT_FIELDS + COUNT]);
+        assert!(s1 + s2 > 0.9 && s2 > 0.05, "{s1} {s2}");
+        assert!(slab[3 * CONTACT_FIELDS..].iter().all(|v| *v == 0.0), "nothing above both grains");
+        for k in 0..CONTACT_FIELDS {
+            let sum: f64 = (0..slices.n).map(|c| slab[c * CONTACT_FIELDS + k]).sum();
+            assert!((sum - vals[k]).abs() <= 1e-12 * vals[k].abs(), "field {k}: {sum} vs {}", vals[k]);
+        }
+        // P_zz integrated over z is -f_z b_z, the force across the slices times the
+        // branch's rise; compressive: a force pushing a away from b gives P_zz > 0
+        assert!((vals[PZZ] - (-f[2] * branch[2])).abs() < 1e-15 && vals[PZZ] > 0.0);
+        assert_eq!([vals[PXZ], vals[PYZ]], [-f[0] * branch[2], -f[1] * branch[2]]);
+    }
+
+    #[test]
+    fn a_horizontal_branch_and_a_wall_contact_keep_their_whole_share() {
         let s = Slices { base: 1.0, dz: 0.5, n: 2 };
         let mut got = Vec::new();
-        s.segment(1.7, 1.7, |c, w| got.push((c, w)));
-        assert_eq!(got, vec![(1, 1.0)]);
+        // horizontal: the mean of the two grains' volume shares
+        s.branch(End { z: 1.5, r: 0.25 }, End { z: 1.5, r: 0.25 }, |c, w| got.push((c, w)));
+        assert_eq!(got.len(), 2);
+        assert!((got[0].1 - 0.5).abs() < 1e-12 && (got[1].1 - 0.5).abs() < 1e-12, "{got:?}");
         got.clear();
-        s.segment(0.0, 0.9, |c, w| got.push((c, w)));
-        s.segment(2.0, 2.5, |c, w| got.push((c, w)));
-        s.segment(f64::NAN, 1.2, |c, w| got.push((c, w)));
+        // a grain on a wall at the base: all of the contact is inside the slices
+        s.branch(End { z: 1.2, r: 0.2 }, End { z: 1.0, r: 0.0 }, |c, w| got.push((c, w)));
+        assert!((got.iter().map(|g| g.1).sum::<f64>() - 1.0).abs() < 1e-12, "{got:?}");
+        assert!(got.iter().all(|g| g.1 >= 0.0));
+        got.clear();
+        // out of the slices, or not a number: nothing
+        s.branch(End { z: 0.2, r: 0.1 }, End { z: 0.5, r: 0.1 }, |c, w| got.push((c, w)));
+        s.branch(End { z: 2.5, r: 0.1 }, End { z: 2.8, r: 0.1 }, |c, w| got.push((c, w)));
+        s.branch(End { z: f64::NAN, r: 0.1 }, End { z: 1.2, r: 0.1 }, |c, w| got.push((c, w)));
         assert!(got.is_empty(), "{got:?}");
-        // half of it below the base: dropped
-        s.segment(0.5, 1.5, |c, w| got.push((c, w)));
-        assert_eq!(got, vec![(0, 0.5)]);
     }
 }
