@@ -67,19 +67,27 @@ fn from_top(f: &[f64], dz: f64) -> Vec<f64> {
     out
 }
 
-/// Largest |measured / expected - 1| over the slices with phi > 0.1 above `z_min`, with
-/// the slice where it occurs; printed with the profile.
-fn worst(label: &str, z: &[f64], phi: &[f64], measured: &[f64], expected: &[f64], z_min: f64) -> (f64, f64) {
+/// Largest |measured / expected - 1| over the slices with phi > `phi_min` above `z_min`,
+/// with the height where it occurs; printed.
+fn worst(
+    label: &str,
+    z: &[f64],
+    phi: &[f64],
+    measured: &[f64],
+    expected: &[f64],
+    z_min: f64,
+    phi_min: f64,
+) -> (f64, f64) {
     let mut w = (0.0, f64::NAN);
     for c in 0..z.len() {
-        if phi[c] > 0.1 && z[c] > z_min {
+        if phi[c] > phi_min && z[c] > z_min {
             let e = (measured[c] / expected[c] - 1.0).abs();
             if !(e <= w.0) {
                 w = (e, z[c]);
             }
         }
     }
-    eprintln!("{label}: largest relative error {:.4} at z = {:.5} m (phi > 0.1, z > {z_min:.5} m)", w.0, w.1);
+    eprintln!("{label}: largest relative error {:.4} at z = {:.5} m (phi > {phi_min}, z > {z_min:.5} m)", w.0, w.1);
     w
 }
 
@@ -87,34 +95,50 @@ fn column<'p>(p: &'p saltus_solvers::output::Profiles, name: &str) -> &'p [f64] 
     p.get(name).unwrap_or_else(|| panic!("no column {name}"))
 }
 
-/// The two balances of a run: (p_p error, tau_p error), each the largest relative error
-/// and where.
-fn balances(s: &Scene, label: &str) -> ((f64, f64), (f64, f64)) {
-    let (m, g, p) = run(s);
-    let (z, phi) = (column(&p, "z"), column(&p, "phi"));
-    let dz = m.dz();
-    let rho_p = s.particles.density;
-    let wet = s.solver.lagrangian.fluid != saltus_core::scene::FluidMode::Off;
-    let rho_f = if wet { s.fluid.density } else { 0.0 };
-    let sin = s.physics.slope;
-    let cos = (1.0 - sin * sin).sqrt();
-    let gr = s.physics.gravity;
-    let bx = gr * sin + if wet { s.physics.pressure_gradient / rho_p } else { 0.0 };
-    let fz: Vec<f64> = (0..z.len()).map(|c| (rho_p - rho_f) * gr * cos * phi[c] - g.drag[2][c]).collect();
-    let fx: Vec<f64> = (0..z.len()).map(|c| rho_p * bx * phi[c] + g.drag[0][c]).collect();
-    let (pz, tx) = (from_top(&fz, dz), from_top(&fx, dz));
-    let z_min = fixed_top(&m);
-    for c in 0..z.len() {
-        if phi[c] > 0.05 {
-            eprintln!(
-                "{label} z {:.5} phi {:.3} p_p {:.4} ({:.4} kin) expected {:.4} | tau_p {:.4} ({:.4} kin) expected {:.4} | drag x {:.3} z {:.3}",
-                z[c], phi[c], g.p_p[0][c], g.p_p[1][c], pz[c], g.tau_p[0][c], g.tau_p[1][c], tx[c], g.drag[0][c], g.drag[2][c]
-            );
+/// A run's fields beside the integrals its momentum balance gives.
+struct Balance {
+    label: String,
+    fields: GranularAverages,
+    profiles: saltus_solvers::output::Profiles,
+    /// int_z^top of the z and x forces on the grains (Pa)
+    expected: [Vec<f64>; 2],
+    /// top of the fixed grains above the column base (m)
+    z_min: f64,
+}
+
+impl Balance {
+    /// Run `s` and integrate its balance.
+    fn of(s: &Scene, label: &str) -> Balance {
+        let (m, g, p) = run(s);
+        let (z, phi) = (column(&p, "z"), column(&p, "phi"));
+        let dz = m.dz();
+        let rho_p = s.particles.density;
+        let wet = s.solver.lagrangian.fluid != saltus_core::scene::FluidMode::Off;
+        let rho_f = if wet { s.fluid.density } else { 0.0 };
+        let sin = s.physics.slope;
+        let cos = (1.0 - sin * sin).sqrt();
+        let gr = s.physics.gravity;
+        let bx = gr * sin + if wet { s.physics.pressure_gradient / rho_p } else { 0.0 };
+        let fz: Vec<f64> = (0..z.len()).map(|c| (rho_p - rho_f) * gr * cos * phi[c] - g.drag[2][c]).collect();
+        let fx: Vec<f64> = (0..z.len()).map(|c| rho_p * bx * phi[c] + g.drag[0][c]).collect();
+        // the written columns are these averages
+        for (name, values) in g.columns() {
+            let written = column(&p, name);
+            assert!(written.iter().zip(values).all(|(a, b)| a.to_bits() == b.to_bits()), "{name}");
         }
+        let z_min = fixed_top(&m);
+        Balance { label: label.into(), fields: g, expected: [from_top(&fz, dz), from_top(&fx, dz)], profiles: p, z_min }
     }
-    let ep = worst(&format!("{label} p_p"), z, phi, &g.p_p[0], &pz, z_min);
-    let et = worst(&format!("{label} tau_p"), z, phi, &g.tau_p[0], &tx, z_min);
-    (ep, et)
+
+    /// Largest relative errors of p_p and tau_p where phi > `phi_min`.
+    fn errors(&self, phi_min: f64) -> (f64, f64) {
+        let (z, phi) = (column(&self.profiles, "z"), column(&self.profiles, "phi"));
+        let g = &self.fields;
+        let l = &self.label;
+        let ep = worst(&format!("{l} p_p"), z, phi, &g.p_p[0], &self.expected[0], self.z_min, phi_min);
+        let et = worst(&format!("{l} tau_p"), z, phi, &g.tau_p[0], &self.expected[1], self.z_min, phi_min);
+        (ep.0, et.0)
+    }
 }
 
 /// A coupled bed of 10 d x 10 d x 6 d (about 700 mobile grains of case 1), theta about 0.17.
@@ -135,7 +159,110 @@ fn coupled_bed(set: &[&str]) -> Scene {
 
 #[test]
 fn coupled_bed_stresses_balance_the_buoyant_weight_and_the_driving() {
-    let s = coupled_bed(&["solver.lagrangian.stats_start=0.5", "solver.lagrangian.end_time=1.5"]);
-    let ((ep, _), (et, _)) = balances(&s, "coupled");
-    assert!(ep < 0.03 && et < 0.03, "{ep} {et}");
+    // theta about 0.17 (water depth 5 d), 1 s averaged after 0.5 s of flow, a sample every
+    // 2 ms (the contact stress of one sample is noisy: at 10 ms the error was 3.6 %). The
+    // worst slice is the topmost one with phi > 0.1 (phi 0.12, p_p 1.7 Pa against 300 Pa
+    // at the bottom): 2.9 % (p_p) and 2.9 % (tau_p) there, 3.3 % and 3.6 % with 1.5 s of
+    // average (a slow drift of the bed surface, not noise); 1.8 % where phi > 0.2
+    let s = coupled_bed(&[
+        "solver.lagrangian.stats_start=0.5",
+        "solver.lagrangian.end_time=1.5",
+        "solver.lagrangian.fluid_period=0.002",
+    ]);
+    let b = Balance::of(&s, "coupled");
+    let (ep, et) = b.errors(0.1);
+    assert!(ep < 0.035 && et < 0.035, "p_p {ep}, tau_p {et}");
+    let (ep, et) = b.errors(0.2);
+    assert!(ep < 0.03 && et < 0.03, "p_p {ep}, tau_p {et}");
+}
+
+#[test]
+#[ignore = "slow: 4.5 s of coupled flow (about two minutes in release)"]
+fn coupled_bed_stresses_balance_with_a_longer_average() {
+    let s = coupled_bed(&[
+        "solver.lagrangian.stats_start=1.0",
+        "solver.lagrangian.end_time=4.5",
+        "solver.lagrangian.fluid_period=0.002",
+    ]);
+    let (ep, et) = Balance::of(&s, "coupled long").errors(0.1);
+    assert!(ep < 0.035 && et < 0.035, "p_p {ep}, tau_p {et}");
+}
+
+/// A dry layer of case 1's grains (d = 6 mm, mu_p = 0.4) in a 6 d x 6 d cell with the
+/// fields on: the fields need no fluid.
+fn dry_layer(set: &[&str]) -> Scene {
+    let mut all = vec![
+        "solver.type=lagrangian",
+        "solver.lagrangian.fluid=\"off\"",
+        "solver.lagrangian.granular_fields=true",
+        "solver.lagrangian.length=0.036",
+        "solver.lagrangian.width=0.036",
+        "domain.water_depth=0.03",
+        "solver.lagrangian.stats_start=0",
+        "solver.lagrangian.settle_time=0.3",
+    ];
+    all.extend_from_slice(set);
+    scene("chassagne2023/case01.toml", &all)
+}
+
+#[test]
+fn a_static_packing_carries_its_weight_on_its_contacts() {
+    // 5 d of grains deposited on a flat wall, at rest: p_p = int rho_p g phi dz (the wall
+    // contacts carry it at the bottom), no shear stress, no streaming stress
+    let s = dry_layer(&[
+        "physics.slope=0",
+        "domain.bed_height=0.03",
+        "solver.lagrangian.bottom=\"wall\"",
+        "solver.lagrangian.cells=120",
+        "solver.lagrangian.end_time=0.1",
+    ]);
+    let b = Balance::of(&s, "static");
+    let (ep, _) = b.errors(0.1);
+    assert!(ep < 0.03, "p_p {ep}");
+    let (g, phi) = (&b.fields, column(&b.profiles, "phi"));
+    let bottom = g.p_p[0].iter().cloned().fold(0.0, f64::max);
+    for c in (0..phi.len()).filter(|&c| phi[c] > 0.1) {
+        assert!(g.tau_p[0][c].abs() < 5e-3 * bottom, "tau_p {} at slice {c}", g.tau_p[0][c]);
+        assert!(g.p_p[1][c].abs() < 1e-4 * bottom && g.tau_p[1][c].abs() < 1e-4 * bottom, "kinetic at slice {c}");
+        assert!(g.coordination[c] > 0.0);
+    }
+}
+
+#[test]
+fn a_dry_layer_flowing_down_an_incline_balances_its_weight() {
+    // the DEM counterpart of cases/verification/dry_mu_i_incline.toml: tan(alpha) = 0.55
+    // on a rough bottom, 6 d of grains; dry, so p_p = int rho_p g cos(alpha) phi dz and
+    // tau_p = int rho_p g sin(alpha) phi dz
+    let s = dry_layer(&[
+        "physics.slope=0.48191874977215593",
+        "domain.bed_height=0.036",
+        "solver.lagrangian.cells=132",
+        "solver.lagrangian.stats_start=1.5",
+        "solver.lagrangian.fluid_period=0.000237",
+        "solver.lagrangian.end_time=2.5",
+    ]);
+    let (ep, et) = Balance::of(&s, "incline").errors(0.1);
+    assert!(ep < 0.03 && et < 0.03, "p_p {ep}, tau_p {et}");
+}
+
+#[test]
+fn the_fields_are_bit_identical_on_one_and_two_threads() {
+    // about 2000 pairs: two groups of pairs, each with its slab of contact sums
+    let s = coupled_bed(&["solver.lagrangian.stats_start=0", "solver.lagrangian.end_time=0.1"]);
+    let fields = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
+        pool.install(|| {
+            let (m, g, _) = run(&s);
+            assert!(
+                m.dem().list().len() > saltus_solvers::lagrangian::granular::GROUP,
+                "{} pairs",
+                m.dem().list().len()
+            );
+            g.columns()
+                .iter()
+                .flat_map(|(_, v)| v.iter().map(|x| x.to_bits()).collect::<Vec<u64>>())
+                .collect::<Vec<u64>>()
+        })
+    };
+    assert_eq!(fields(1), fields(2));
 }

@@ -101,7 +101,7 @@ const COUNT: usize = 7;
 
 /// Pairs per work item of a sampled step: each item owns one slab of slice sums, so the
 /// slabs, and the order they are added in, are the same whatever the number of threads.
-pub const GROUP: usize = 16 * CHUNK;
+pub const GROUP: usize = 4 * CHUNK;
 
 /// A wall contact of one particle as recorded by the integration: the centre height and
 /// radius of the particle, the height where its branch meets the wall, then the
