@@ -82,7 +82,7 @@ fn worst(
     for c in 0..z.len() {
         if phi[c] > phi_min && z[c] > z_min {
             let e = (measured[c] / expected[c] - 1.0).abs();
-            if !(e <= w.0) {
+            if e.is_nan() || e > w.0 {
                 w = (e, z[c]);
             }
         }

@@ -41,6 +41,10 @@ pub struct Wall {
     pub sign: f64,
 }
 
+/// A pair in contact: the branch vector from i to j, the unit normal, the force on i (N)
+/// and the power the contact dissipates (W).
+type Touch = ([f64; 3], [f64; 3], [f64; 3], f64);
+
 /// Most walls a scene can have (bottom and two side walls).
 pub const MAX_WALLS: usize = 3;
 
@@ -189,7 +193,7 @@ impl Dem {
         let (li, lj, shift, sqrt_m, r_eff) = (&l.i, &l.j, &l.shift, &l.sqrt_m, &l.r_eff);
         // the force of pair q with history h: the branch vector, the force on i and the
         // dissipated power, or None out of contact
-        let pair = |q: usize, h: &mut [f64; 3]| -> Option<([f64; 3], [f64; 3], [f64; 3], f64)> {
+        let pair = |q: usize, h: &mut [f64; 3]| -> Option<Touch> {
             let (a, b) = (li[q] as usize, lj[q] as usize);
             let s = shift[q];
             let d = [p.x[b] + s[0] - p.x[a], p.y[b] + s[1] - p.y[a], p.z[b] + s[2] - p.z[a]];

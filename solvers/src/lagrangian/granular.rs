@@ -41,16 +41,20 @@
 //! the tension-positive stress when the branch runs x_p - x_q; the form above is the
 //! virial's, P = (1/V) [sum m v' v' + sum_pairs f^{a<-b} (x_a - x_b)], whose trace is the
 //! kinetic-theory pressure.) tau_p = sigma_xz is positive when the grains resist a flow in
-//! +x whose velocity grows with z. v' = v - <v> with <v> the slice's mean over space and
+//! +x whose velocity grows with z. v' = v - `<v>` with `<v>` the slice's mean over space and
 //! time, so the kinetic stress holds the temporal fluctuations of the mean too (that is
 //! the momentum flux of the time-averaged balance).
 //!
 //! * `theta_g` (the existing column): (<v'_x^2> + <v'_y^2> + <v'_z^2>) / 3.
 //! * `heat_flux` q_z (Chassagne eq 2.28, here the flux of fluctuation energy, positive
-//!   upward): q_z = (1/2) rho_p phi <v'_z v'_i v'_i> + (1/V) sum w_c (-b_z) f.(v_a + v_b)/2
-//!   - <v_j> P^contact_jz, the contact part being the symmetric (Goldhirsch 2010) rate of
-//!   work across the slice, taken relative to the slice's mean velocity (the last term).
-//!   Chassagne's sign convention (the same minus signs as eq 2.27) makes it -q_z.
+//!   upward), the contact part being the symmetric (Goldhirsch 2010) rate of work across
+//!   the slice, taken relative to the slice's mean velocity (the last term); Chassagne's
+//!   sign convention (the same minus signs as eq 2.27) makes it -q_z:
+//!
+//!   ```text
+//!   q_z = (1/2) rho_p phi <v'_z v'_i v'_i> + (1/V) sum w_c (-b_z) f.(v_a + v_b)/2
+//!         - <v_j> P^contact_jz
+//!   ```
 //! * `dissipation` Gamma (eq 2.29, W m^-3, >= 0): (1/V) sum w_c D_c with D_c the power the
 //!   contact law dissipates ([`super::contact`]: dashpot c v_n^2 plus Coulomb slip), walls
 //!   and fixed particles included. Eq 2.29 sums -f.(v_p - v_q)/2 over the translational
@@ -407,8 +411,8 @@ impl GranularStats {
                 self.vyz[c] += w * v[1] * v[2];
                 self.vz_v2[c] += w * v[2] * v2;
                 self.count[c] += share;
-                for k in 0..3 {
-                    self.drag[k][c] += share * f[k];
+                for (d, fk) in self.drag.iter_mut().zip(f) {
+                    d[c] += share * fk;
                 }
                 self.drag_v[c] += share * fv;
             });

@@ -420,7 +420,7 @@ impl<'a> Lagrangian<'a> {
         let scales = FieldScales {
             rho_p: self.mat.rho_p,
             d: self.mat.d,
-            eta_f: wet.then(|| scene.fluid.density * scene.fluid.viscosity),
+            eta_f: wet.then_some(scene.fluid.density * scene.fluid.viscosity),
         };
         Some(g.averages(&self.stats, self.cell_volume, self.field.dz, &scales))
     }
