@@ -266,3 +266,26 @@ fn the_fields_are_bit_identical_on_one_and_two_threads() {
     };
     assert_eq!(fields(1), fields(2));
 }
+
+#[test]
+fn a_dry_run_asking_for_the_fields_needs_an_averaging_window() {
+    // check and run load the scene the same way: the refusal names the key
+    saltus_closures::link();
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/chassagne2023/case01.toml");
+    let set = |extra: &[&str]| -> Vec<String> {
+        ["solver.type=lagrangian", "solver.lagrangian.fluid=\"off\"", "solver.lagrangian.end_time=1.0"]
+            .iter()
+            .chain(extra)
+            .map(|s| s.to_string())
+            .collect()
+    };
+    let e = Scene::from_file_with(&file, &set(&["solver.lagrangian.granular_fields=true"]))
+        .expect_err("stats_start = 8 s after the end")
+        .to_string();
+    assert!(e.contains("solver.lagrangian.stats_start") && e.contains("case01.toml"), "{e}");
+    // without the fields a dry run averages nothing, and needs no window
+    let s = Scene::from_file_with(&file, &set(&[])).expect("loads");
+    assert_eq!(s.solver.lagrangian.granular_fields, Some(false));
+    let e = Scene::from_file_with(&file, &set(&["solver.lagrangian.granular_fields=1"])).expect_err("not a boolean");
+    assert!(e.to_string().contains("solver.lagrangian.granular_fields"), "{e}");
+}
