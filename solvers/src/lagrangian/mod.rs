@@ -12,6 +12,7 @@ pub mod granular;
 pub mod neighbours;
 pub mod particles;
 pub mod report;
+mod sampling;
 pub mod setup;
 pub mod solver;
 pub mod stats;
