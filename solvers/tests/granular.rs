@@ -18,8 +18,7 @@
 //! slope; a pressure gradient would add dp/dx / rho_p), b_z = -(1 - rho_f/rho_p) g
 //! cos(alpha) (weight and buoyancy); n<f_D> is the drag of the fluid on the mobile grains
 //! per unit volume (measured, field `drag` of the averages). Dry: rho_f = 0, no drag. The
-//! integrals are taken over the slices above, with half of the slice itself (the slice
-//! average of the stress). phi_m is the volume fraction of the mobile grains: the
+//! integrals are the slice averages of int_z^top ([`from_top`]). phi_m is the volume fraction of the mobile grains: the
 //! comparison stops where the fixed grains of the rough bottom reach.
 
 use std::path::Path;
@@ -54,15 +53,21 @@ fn fixed_top(m: &Lagrangian<'_>) -> f64 {
     (p.n_mobile..p.len()).map(|a| p.z[a] + p.radius[a] - base).fold(0.0, f64::max)
 }
 
-/// int_z^top f dz' at each slice (slice average: half of the slice's own share).
+/// int_z^top f dz' averaged over each slice, from the slice averages f_c: the slices
+/// above, plus int_slice f(z') (z' - z_c) / dz dz' for the slice itself, f taken linear
+/// across it (centred slope): f_c dz / 2 + f'_c dz^2 / 12. The slope term is what a
+/// steep phi at the bed surface needs (about 1 % of p_p in the topmost slices).
 fn from_top(f: &[f64], dz: f64) -> Vec<f64> {
-    let mut out = vec![0.0; f.len()];
+    // no grains, no force (the drag is undefined there)
+    let f: Vec<f64> = f.iter().map(|v| if v.is_finite() { *v } else { 0.0 }).collect();
+    let n = f.len();
+    let mut out = vec![0.0; n];
     let mut above = 0.0;
-    for c in (0..f.len()).rev() {
-        // no grains, no force (the drag is undefined there)
-        let f = if f[c].is_finite() { f[c] } else { 0.0 };
-        out[c] = above + 0.5 * f * dz;
-        above += f * dz;
+    for c in (0..n).rev() {
+        let (lo, hi) = (c.saturating_sub(1), (c + 1).min(n - 1));
+        let slope = (f[hi] - f[lo]) / ((hi - lo).max(1) as f64 * dz);
+        out[c] = above + 0.5 * f[c] * dz + slope * dz * dz / 12.0;
+        above += f[c] * dz;
     }
     out
 }
@@ -160,24 +165,21 @@ fn coupled_bed(set: &[&str]) -> Scene {
 #[test]
 fn coupled_bed_stresses_balance_the_buoyant_weight_and_the_driving() {
     // theta about 0.17 (water depth 5 d), 1 s averaged after 0.5 s of flow, a sample every
-    // 2 ms (the contact stress of one sample is noisy: at 10 ms the error was 3.6 %). The
-    // worst slice is the topmost one with phi > 0.1 (phi 0.12, p_p 1.7 Pa against 300 Pa
-    // at the bottom): 2.9 % (p_p) and 2.9 % (tau_p) there, 3.3 % and 3.6 % with 1.5 s of
-    // average (a slow drift of the bed surface, not noise); 1.8 % where phi > 0.2
+    // 2 ms (the contact stress of one sample is noisy). Measured: 0.51 % (p_p) and 0.68 %
+    // (tau_p) at worst, in the topmost slice with phi > 0.1 (phi 0.12, p_p 1.7 Pa against
+    // 300 Pa at the bottom); 2.7 % and 2.6 % over 3.5 s (the ignored test below: the bed
+    // surface drifts slowly)
     let s = coupled_bed(&[
         "solver.lagrangian.stats_start=0.5",
         "solver.lagrangian.end_time=1.5",
         "solver.lagrangian.fluid_period=0.002",
     ]);
-    let b = Balance::of(&s, "coupled");
-    let (ep, et) = b.errors(0.1);
-    assert!(ep < 0.035 && et < 0.035, "p_p {ep}, tau_p {et}");
-    let (ep, et) = b.errors(0.2);
+    let (ep, et) = Balance::of(&s, "coupled").errors(0.1);
     assert!(ep < 0.03 && et < 0.03, "p_p {ep}, tau_p {et}");
 }
 
 #[test]
-#[ignore = "slow: 4.5 s of coupled flow (about two minutes in release)"]
+#[ignore = "slow: 4.5 s of coupled flow (1 to 2 minutes in release)"]
 fn coupled_bed_stresses_balance_with_a_longer_average() {
     let s = coupled_bed(&[
         "solver.lagrangian.stats_start=1.0",
@@ -185,7 +187,7 @@ fn coupled_bed_stresses_balance_with_a_longer_average() {
         "solver.lagrangian.fluid_period=0.002",
     ]);
     let (ep, et) = Balance::of(&s, "coupled long").errors(0.1);
-    assert!(ep < 0.035 && et < 0.035, "p_p {ep}, tau_p {et}");
+    assert!(ep < 0.03 && et < 0.03, "p_p {ep}, tau_p {et}");
 }
 
 /// A dry layer of case 1's grains (d = 6 mm, mu_p = 0.4) in a 6 d x 6 d cell with the
@@ -208,7 +210,8 @@ fn dry_layer(set: &[&str]) -> Scene {
 #[test]
 fn a_static_packing_carries_its_weight_on_its_contacts() {
     // 5 d of grains deposited on a flat wall, at rest: p_p = int rho_p g phi dz (the wall
-    // contacts carry it at the bottom), no shear stress, no streaming stress
+    // contacts carry it at the bottom), no shear stress, no streaming stress. Measured:
+    // 0.89 % at worst (the top slice with phi > 0.1), |tau_p| < 0.5 % of p_p
     let s = dry_layer(&[
         "physics.slope=0",
         "domain.bed_height=0.03",
@@ -232,7 +235,9 @@ fn a_static_packing_carries_its_weight_on_its_contacts() {
 fn a_dry_layer_flowing_down_an_incline_balances_its_weight() {
     // the DEM counterpart of cases/verification/dry_mu_i_incline.toml: tan(alpha) = 0.55
     // on a rough bottom, 6 d of grains; dry, so p_p = int rho_p g cos(alpha) phi dz and
-    // tau_p = int rho_p g sin(alpha) phi dz
+    // tau_p = int rho_p g sin(alpha) phi dz. A sample every 0.24 ms: the contact stress of
+    // a collisional flow is noisy (one every 10 ms, the default, left 15 % after 1 s).
+    // Measured: 1.9 % (p_p), 2.7 % (tau_p) at worst, in the top slice with phi > 0.1
     let s = dry_layer(&[
         "physics.slope=0.48191874977215593",
         "domain.bed_height=0.036",
