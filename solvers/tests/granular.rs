@@ -227,7 +227,14 @@ fn a_static_packing_carries_its_weight_on_its_contacts() {
     for c in (0..phi.len()).filter(|&c| phi[c] > 0.1) {
         assert!(g.tau_p[0][c].abs() < 5e-3 * bottom, "tau_p {} at slice {c}", g.tau_p[0][c]);
         assert!(g.p_p[1][c].abs() < 1e-4 * bottom && g.tau_p[1][c].abs() < 1e-4 * bottom, "kinetic at slice {c}");
-        assert!(g.coordination[c] > 0.0);
+        // frictional spheres at rest, in the bulk (two diameters off the wall, whose
+        // ordered first layer has fewer contacts, and one below the free surface, 5 d):
+        // between the isostatic 4 of frictional spheres and the 6 of frictionless ones
+        // (measured 4.7 to 5.3)
+        let z = column(&b.profiles, "z")[c];
+        if (0.012..0.024).contains(&z) {
+            assert!((4.0..6.0).contains(&g.coordination[c]), "coordination {} at z = {z}", g.coordination[c]);
+        }
     }
 }
 
