@@ -72,6 +72,8 @@ fn stop_and_restart(name: &str, phase: Phase, at: f64) {
     let second = saltus_solvers::run_with(&s, &parts, &mut Quiet, &opts).expect("restarts");
     assert_eq!(second.ending.name(), "end_time");
 
+    // the granular fields (on by default with a fluid) are among the profiles compared
+    assert!(read(&whole, "profiles.csv").lines().next().is_some_and(|h| h.contains(",p_p_contact,")));
     assert_eq!(read(&whole, "profiles.csv"), read(&parts, "profiles.csv"), "profiles.csv");
     assert_eq!(summary(&whole), summary(&parts), "summary.json");
     assert_eq!(read(&whole, "timeseries.csv"), read(&parts, "timeseries.csv"), "timeseries.csv");

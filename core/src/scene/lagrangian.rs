@@ -154,6 +154,12 @@ pub struct LagrangianSettings {
     pub settle_time: Option<f64>,
     /// time after which profiles are averaged (s)
     pub stats_start: f64,
+    /// average the granular fields (particle stresses split kinetic/contact, heat flux,
+    /// dissipations, I, J, mu_eff, coordination) into profiles.csv with the other
+    /// profiles; default on with a fluid, off without (then `true` makes a dry run take
+    /// its averaging samples every `fluid_period` after `stats_start`)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub granular_fields: Option<bool>,
     /// averaging window of the steady-state test (s)
     pub steady_window: f64,
     /// steady when the window-averaged transport rate changes by less than this
@@ -194,6 +200,7 @@ impl Default for LagrangianSettings {
             fluid_period: 1.0e-2,
             settle_time: None,
             stats_start: 0.0,
+            granular_fields: None,
             steady_window: 1.0,
             steady_tolerance: 0.05,
             steady_windows: 3,
@@ -232,6 +239,7 @@ impl LagrangianSettings {
             let h = c.bed_height + c.water_depth;
             self.cells = Some(((h * FLUID_CELLS_PER_DIAMETER / c.d).round() as usize).max(2));
         }
+        self.granular_fields.get_or_insert(self.fluid != FluidMode::Off);
         if self.settle_time.is_none() {
             // the lattice holds the mobile bed, the two diameters removed under it and
             // the rough layer, at the loose packing of the lattice
@@ -243,6 +251,12 @@ impl LagrangianSettings {
             // round to a millisecond so that the resolved scene reads cleanly
             self.settle_time = (t.is_finite() && t > 0.0).then(|| (t * 1e3).round() / 1e3);
         }
+    }
+
+    /// Whether the run averages profiles: with a fluid (at every fluid update), or dry
+    /// when it asks for the granular fields.
+    pub fn takes_samples(&self) -> bool {
+        self.fluid != FluidMode::Off || self.granular_fields == Some(true)
     }
 
     /// Ranges of the keys given (or derived), whichever solver is active.
@@ -301,7 +315,7 @@ impl LagrangianSettings {
         if self.initial == Initial::Bed && self.settle_time.is_none() {
             return Err(need("settle_time", "the default needs grains heavier than the fluid under gravity"));
         }
-        if self.fluid != FluidMode::Off && self.end_time <= self.stats_start {
+        if self.takes_samples() && self.end_time <= self.stats_start {
             // the averages would hold no sample: refused before the work rather than
             // reported as all-zero profiles after it
             return Err(key_error(

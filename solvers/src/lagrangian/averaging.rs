@@ -25,6 +25,26 @@ pub fn cap_volume(zc: f64, r: f64, h: f64) -> f64 {
     std::f64::consts::PI * s * s * (3.0 * r - s) / 3.0
 }
 
+/// Call `f(c, w)` for every cell c of a uniform grid of `n` cells of height `dz` (from 0)
+/// that the sphere of centre height `zc` and radius `r` (both from the grid's bottom)
+/// crosses, with w the volume of the sphere inside the cell (exact, from
+/// [`cap_volume`]); parts outside the grid are dropped.
+#[inline]
+pub fn sphere_slices(zc: f64, r: f64, n: usize, dz: f64, mut f: impl FnMut(usize, f64)) {
+    let top = n as f64 * dz;
+    if zc + r <= 0.0 || zc - r >= top {
+        return;
+    }
+    let lo = (((zc - r) / dz).floor().max(0.0)) as usize;
+    let hi = (((zc + r) / dz).floor() as usize).min(n - 1);
+    let mut below = cap_volume(zc, r, lo as f64 * dz);
+    for c in lo..=hi {
+        let upto = cap_volume(zc, r, (c + 1) as f64 * dz);
+        f(c, upto - below);
+        below = upto;
+    }
+}
+
 /// Per-cell sums of one averaging pass.
 #[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct CellSums {
@@ -61,22 +81,12 @@ impl CellSums {
             v.fill(0.0);
         }
         let n = self.vol.len();
-        let top = n as f64 * dz;
         for a in 0..p.len() {
             let (zc, r) = (p.z[a] - base, p.radius[a]);
-            if zc + r <= 0.0 || zc - r >= top {
-                continue;
-            }
             let vp = 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
-            let lo = (((zc - r) / dz).floor().max(0.0)) as usize;
-            let hi = (((zc + r) / dz).floor() as usize).min(n - 1);
             let (vx, vy, vz) = (p.vx[a], p.vy[a], p.vz[a]);
             let (fx, kp) = (k[a] * urx[a], k[a]);
-            let mut below = cap_volume(zc, r, lo as f64 * dz);
-            for c in lo..=hi {
-                let upto = cap_volume(zc, r, (c + 1) as f64 * dz);
-                let w = upto - below;
-                below = upto;
+            sphere_slices(zc, r, n, dz, |c, w| {
                 self.vol[c] += w;
                 self.v[0][c] += w * vx;
                 self.v[1][c] += w * vy;
@@ -88,7 +98,7 @@ impl CellSums {
                 let frac = w / vp;
                 self.drag[c] += frac * fx;
                 self.coef[c] += frac * kp;
-            }
+            });
         }
     }
 

@@ -7,7 +7,7 @@
 //! springs, the body force of the phase, the rebuild flag), the drag state (every
 //! particle's random stream, fluctuation draw and clock, the slip and drag coefficient of
 //! the last evaluation), the fluid field the particles see, the fluid column (velocity,
-//! relaxed eddy viscosity, k and omega), the last averages, the statistics accumulators,
+//! relaxed eddy viscosity, k and omega), the last averages, the statistics accumulators (the granular fields' too),
 //! the steady-state detector, the deposit surface and the VTK counters. The neighbour list
 //! is saved rather than rebuilt: a rebuild at another step would wrap the positions and
 //! order the pairs differently, and the sums would round differently.
@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 use super::averaging::CellSums;
 use super::dem::Dem;
 use super::drag::{FluidField, FluidForces};
+use super::granular::GranularStats;
 use super::solver::{Lagrangian, Stage};
 use super::stats::{Stats, Steady};
 use crate::column::FluidColumn;
@@ -40,6 +41,7 @@ struct Saving<'s> {
     sums: &'s CellSums,
     averages: [&'s [f64]; 4],
     stats: &'s Stats,
+    granular: &'s Option<GranularStats>,
     steady: &'s Steady,
     cell_volume: f64,
     bed_surface: f64,
@@ -62,6 +64,7 @@ struct Saved {
     sums: CellSums,
     averages: [Vec<f64>; 4],
     stats: Stats,
+    granular: Option<GranularStats>,
     steady: Steady,
     cell_volume: f64,
     bed_surface: f64,
@@ -89,6 +92,7 @@ impl Lagrangian<'_> {
             sums: &self.sums,
             averages: [&self.phi, &self.u_p, &self.beta, &self.tau_t],
             stats: &self.stats,
+            granular: &self.granular,
             steady: &self.steady,
             cell_volume: self.cell_volume,
             bed_surface: self.bed_surface,
@@ -122,6 +126,8 @@ impl Lagrangian<'_> {
             && s.averages.iter().all(|a| a.len() == cells)
             && s.column.as_ref().is_none_or(|c| c.velocity().len() == cells)
             && s.column.is_some() == self.column.is_some()
+            && s.granular.is_some() == self.granular.is_some()
+            && s.granular.as_ref().is_none_or(|g| g.fits(cells))
             && s.dem.dt() == self.dem.dt();
         if !fits {
             return Err(format!(
@@ -141,6 +147,7 @@ impl Lagrangian<'_> {
         self.sums = s.sums;
         (self.phi, self.u_p, self.beta, self.tau_t) = (phi, u_p, beta, tau_t);
         self.stats = s.stats;
+        self.granular = s.granular;
         self.steady = s.steady;
         self.cell_volume = s.cell_volume;
         self.bed_surface = s.bed_surface;

@@ -135,20 +135,31 @@ pub(crate) struct ContactInput {
     pub r_eff: f64,
 }
 
-/// Force on particle i (N) and the updated tangential history `h` (m).
+/// Force on particle i (N), with the updated tangential history `h` (m), and the power
+/// the contact dissipates over the step (W, >= 0; the function is inlined, so a caller
+/// that drops it does not compute it): the dashpot's c v_n^2 (c = c_n sqrt(m*) of the
+/// linear law, 2 sqrt(5/6) |beta| sqrt(S_n m*) of Hertz) plus, when the Coulomb slider
+/// slips, cap |Delta xi| / dt with |Delta xi| = (|F_t,trial| - cap) / k_t the spring
+/// displacement the slip removes (the work of a force of magnitude cap against that
+/// slip). The springs store energy and give it back: they are not in it.
 #[inline(always)]
-pub(crate) fn contact_force(law: &ContactLaw, c: &ContactInput, h: &mut [f64; 3], dt: f64) -> [f64; 3] {
+pub(crate) fn contact_force(law: &ContactLaw, c: &ContactInput, h: &mut [f64; 3], dt: f64) -> ([f64; 3], f64) {
     let n = c.n;
     let vn = c.v_rel[0] * n[0] + c.v_rel[1] * n[1] + c.v_rel[2] * n[2];
-    let (fn_, kt) = match law.model {
-        ContactModel::Linear => (law.kn * c.delta - law.damping_factor() * c.sqrt_m * vn, law.kt),
+    let (fn_, kt, damping) = match law.model {
+        ContactModel::Linear => {
+            let damping = law.damping_factor() * c.sqrt_m;
+            (law.kn * c.delta - damping * vn, law.kt, damping)
+        }
         ContactModel::Hertz => {
             let a = (c.r_eff * c.delta).sqrt();
             let sn = 2.0 * law.e_star * a;
             let elastic = 4.0 / 3.0 * law.e_star * a * c.delta;
-            (elastic - law.hertz_damping * (sn).sqrt() * c.sqrt_m * vn, 8.0 * law.g_star * a)
+            let damping = law.hertz_damping * (sn).sqrt() * c.sqrt_m;
+            (elastic - damping * vn, 8.0 * law.g_star * a, damping)
         }
     };
+    let mut power = damping * vn * vn;
     let vt = [c.v_rel[0] - vn * n[0], c.v_rel[1] - vn * n[1], c.v_rel[2] - vn * n[2]];
     // keep the spring in the tangent plane as the contact rolls
     let hn = h[0] * n[0] + h[1] * n[1] + h[2] * n[2];
@@ -164,8 +175,11 @@ pub(crate) fn contact_force(law: &ContactLaw, c: &ContactInput, h: &mut [f64; 3]
             ft[k] *= s;
             h[k] *= s;
         }
+        if kt > 0.0 {
+            power += cap * (ft2.sqrt() - cap) / (kt * dt);
+        }
     }
-    [-fn_ * n[0] + ft[0], -fn_ * n[1] + ft[1], -fn_ * n[2] + ft[2]]
+    ([-fn_ * n[0] + ft[0], -fn_ * n[1] + ft[1], -fn_ * n[2] + ft[2]], power)
 }
 
 #[inline(always)]
@@ -194,7 +208,7 @@ mod tests {
             let law = ContactLaw::linear(1e4, 1e4, 0.7, mu);
             let c = ContactInput { n: [0.0, 0.0, 1.0], delta, v_rel: [vt, 0.0, 0.0], sqrt_m: 0.01, r_eff: 0.003 };
             let mut h = [0.0; 3];
-            let f = contact_force(&law, &c, &mut h, 1e-4);
+            let f = contact_force(&law, &c, &mut h, 1e-4).0;
             let fn_ = -f[2];
             prop_assert!(f[0].abs() <= mu * fn_.max(0.0) * (1.0 + 1e-12) + 1e-300);
             // the spring always holds the force it transmits
@@ -207,7 +221,7 @@ mod tests {
         // F = (4/3) E* sqrt(R*) delta^{3/2} at zero normal velocity
         let law = ContactLaw::hertz(1e7, 0.3, 0.7, 0.4);
         let c = ContactInput { n: [0.0, 0.0, 1.0], delta: 1e-6, v_rel: [0.0; 3], sqrt_m: 0.01, r_eff: 1.5e-3 };
-        let f = contact_force(&law, &c, &mut [0.0; 3], 1e-6);
+        let f = contact_force(&law, &c, &mut [0.0; 3], 1e-6).0;
         let e_star = 1e7 / (2.0 * (1.0 - 0.09));
         let expected = 4.0 / 3.0 * e_star * (1.5e-3f64).sqrt() * 1e-9;
         assert!((-f[2] / expected - 1.0).abs() < 1e-12);

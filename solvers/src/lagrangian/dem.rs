@@ -20,6 +20,7 @@
 use rayon::prelude::*;
 
 use super::contact::{contact_force, cross, ContactInput, ContactLaw};
+use super::granular::{contact_values, spread, ContactSums, End, Slices, WallRecord, GROUP};
 use super::neighbours::NeighbourList;
 use super::particles::{Box3, Particles};
 
@@ -39,6 +40,10 @@ pub struct Wall {
     /// +1 if particles are at larger coordinates, -1 otherwise
     pub sign: f64,
 }
+
+/// A pair in contact: the branch vector from i to j, the unit normal, the force on i (N)
+/// and the power the contact dissipates (W).
+type Touch = ([f64; 3], [f64; 3], [f64; 3], f64);
 
 /// Most walls a scene can have (bottom and two side walls).
 pub const MAX_WALLS: usize = 3;
@@ -76,6 +81,9 @@ pub struct Dem {
     pair_f: Vec<[f64; 3]>,
     #[serde(skip)]
     pair_t: Vec<[f64; 3]>,
+    /// the granular-field sums of the last sampled step ([`Dem::step_sampled`])
+    #[serde(skip)]
+    contact: ContactSums,
     /// a particle moved more than half the skin since the last build (set by the
     /// integration, so the check costs no extra pass)
     rebuild_due: bool,
@@ -100,6 +108,7 @@ impl Dem {
             wall_hist: vec![[[0.0; 3]; MAX_WALLS]; nm],
             pair_f: Vec::new(),
             pair_t: Vec::new(),
+            contact: ContactSums::default(),
             rebuild_due: true,
         }
     }
@@ -150,16 +159,30 @@ impl Dem {
 
     /// Advance one time step.
     pub fn step(&mut self) {
+        self.step_sampled(None);
+    }
+
+    /// Advance one time step; with `slices`, also take the contact sums of the granular
+    /// fields on them ([`super::granular`]), read afterwards with [`Dem::contact_sums`].
+    pub fn step_sampled(&mut self, slices: Option<Slices>) {
         if self.rebuild_due || self.list.x0.len() != self.p.len() {
             self.list.build(&mut self.p, &self.bx);
         }
-        self.pair_forces();
-        self.rebuild_due = self.integrate();
+        if let Some(s) = slices {
+            self.contact.prepare(s, self.list.len(), self.p.n_mobile);
+        }
+        self.pair_forces(slices.is_some());
+        self.rebuild_due = self.integrate(slices.is_some());
         self.time += self.dt;
         self.steps += 1;
     }
 
-    fn pair_forces(&mut self) {
+    /// The contact sums of the last sampled step.
+    pub fn contact_sums(&self) -> &ContactSums {
+        &self.contact
+    }
+
+    fn pair_forces(&mut self, sampled: bool) {
         let np = self.list.len();
         self.pair_f.resize(np, [0.0; 3]);
         self.pair_t.resize(np, [0.0; 3]);
@@ -168,43 +191,83 @@ impl Dem {
         let dt = self.dt;
         let l = &mut self.list;
         let (li, lj, shift, sqrt_m, r_eff) = (&l.i, &l.j, &l.shift, &l.sqrt_m, &l.r_eff);
-        // each pair owns its history and its output slots: chunks of the three arrays
-        // zipped, pair q = chunk start + k
-        (l.hist.par_chunks_mut(CHUNK), self.pair_f.par_chunks_mut(CHUNK), self.pair_t.par_chunks_mut(CHUNK))
+        // the force of pair q with history h: the branch vector, the force on i and the
+        // dissipated power, or None out of contact
+        let pair = |q: usize, h: &mut [f64; 3]| -> Option<Touch> {
+            let (a, b) = (li[q] as usize, lj[q] as usize);
+            let s = shift[q];
+            let d = [p.x[b] + s[0] - p.x[a], p.y[b] + s[1] - p.y[a], p.z[b] + s[2] - p.z[a]];
+            let (ra, rb) = (p.radius[a], p.radius[b]);
+            let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            let reach = ra + rb;
+            if r2 >= reach * reach {
+                return None;
+            }
+            let dist = r2.sqrt();
+            let n = [d[0] / dist, d[1] / dist, d[2] / dist];
+            let arm = [ra * p.wx[a] + rb * p.wx[b], ra * p.wy[a] + rb * p.wy[b], ra * p.wz[a] + rb * p.wz[b]];
+            let spin = cross(arm, n);
+            let v_rel = [p.vx[b] - p.vx[a] - spin[0], p.vy[b] - p.vy[a] - spin[1], p.vz[b] - p.vz[a] - spin[2]];
+            let c = ContactInput { n, delta: reach - dist, v_rel, sqrt_m: sqrt_m[q], r_eff: r_eff[q] };
+            let (f, power) = contact_force(law, &c, h, dt);
+            Some((d, n, f, power))
+        };
+        let write = |q: usize, h: &mut [f64; 3], f_out: &mut [f64; 3], t_out: &mut [f64; 3]| match pair(q, h) {
+            Some((d, n, f, power)) => {
+                *f_out = f;
+                *t_out = cross(n, f);
+                Some((d, f, power))
+            }
+            None => {
+                *h = [0.0; 3];
+                *f_out = [0.0; 3];
+                *t_out = [0.0; 3];
+                None
+            }
+        };
+        if !sampled {
+            // each pair owns its history and its output slots: chunks of the three arrays
+            // zipped, pair q = chunk start + k
+            (l.hist.par_chunks_mut(CHUNK), self.pair_f.par_chunks_mut(CHUNK), self.pair_t.par_chunks_mut(CHUNK))
+                .into_par_iter()
+                .enumerate()
+                .for_each(|(c, (hist, pf, pt))| {
+                    let o = c * CHUNK;
+                    for (k, ((h, f_out), t_out)) in hist.iter_mut().zip(pf.iter_mut()).zip(pt.iter_mut()).enumerate() {
+                        write(o + k, h, f_out, t_out);
+                    }
+                });
+            return;
+        }
+        // the same in groups of GROUP pairs, each adding its contacts to its own slab
+        let cs = &mut self.contact;
+        let (slices, slab_len) = (cs.slices, cs.slab_len());
+        (
+            l.hist.par_chunks_mut(GROUP),
+            self.pair_f.par_chunks_mut(GROUP),
+            self.pair_t.par_chunks_mut(GROUP),
+            cs.slabs.par_chunks_mut(slab_len.max(1)),
+        )
             .into_par_iter()
             .enumerate()
-            .for_each(|(c, (hist, pf, pt))| {
-                let o = c * CHUNK;
+            .for_each(|(c, (hist, pf, pt, slab))| {
+                let o = c * GROUP;
                 for (k, ((h, f_out), t_out)) in hist.iter_mut().zip(pf.iter_mut()).zip(pt.iter_mut()).enumerate() {
                     let q = o + k;
-                    let (a, b) = (li[q] as usize, lj[q] as usize);
-                    let s = shift[q];
-                    let d = [p.x[b] + s[0] - p.x[a], p.y[b] + s[1] - p.y[a], p.z[b] + s[2] - p.z[a]];
-                    let (ra, rb) = (p.radius[a], p.radius[b]);
-                    let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                    let reach = ra + rb;
-                    if r2 >= reach * reach {
-                        *h = [0.0; 3];
-                        *f_out = [0.0; 3];
-                        *t_out = [0.0; 3];
-                        continue;
+                    if let Some((d, f, power)) = write(q, h, f_out, t_out) {
+                        let (a, b) = (li[q] as usize, lj[q] as usize);
+                        let values =
+                            contact_values(d, f, [p.vx[a], p.vy[a], p.vz[a]], [p.vx[b], p.vy[b], p.vz[b]], power, 1.0);
+                        let ends = (End { z: p.z[a], r: p.radius[a] }, End { z: p.z[a] + d[2], r: p.radius[b] });
+                        spread(&slices, slab, ends.0, ends.1, &values);
                     }
-                    let dist = r2.sqrt();
-                    let n = [d[0] / dist, d[1] / dist, d[2] / dist];
-                    let arm = [ra * p.wx[a] + rb * p.wx[b], ra * p.wy[a] + rb * p.wy[b], ra * p.wz[a] + rb * p.wz[b]];
-                    let spin = cross(arm, n);
-                    let v_rel = [p.vx[b] - p.vx[a] - spin[0], p.vy[b] - p.vy[a] - spin[1], p.vz[b] - p.vz[a] - spin[2]];
-                    let c = ContactInput { n, delta: reach - dist, v_rel, sqrt_m: sqrt_m[q], r_eff: r_eff[q] };
-                    let f = contact_force(law, &c, h, dt);
-                    *f_out = f;
-                    *t_out = cross(n, f);
                 }
             });
     }
 
     /// Leapfrog update of the mobile particles; true when one of them moved more than half
     /// the skin since the last neighbour build.
-    fn integrate(&mut self) -> bool {
+    fn integrate(&mut self, sampled: bool) -> bool {
         let nm = self.p.n_mobile;
         let dt = self.dt;
         let body = self.body;
@@ -227,10 +290,17 @@ impl Dem {
         let vel = (chunks(&mut p.vx, nm), chunks(&mut p.vy, nm), chunks(&mut p.vz, nm));
         let spin = (chunks(&mut p.wx, nm), chunks(&mut p.wy, nm), chunks(&mut p.wz, nm));
         let wall_hist = self.wall_hist[..nm].par_chunks_mut(CHUNK);
-        (pos.into_par_iter(), vel.into_par_iter(), spin.into_par_iter(), wall_hist)
+        // the wall contacts' records of a sampled step, none otherwise
+        let recorded = if sampled { nm } else { 0 };
+        let unrecorded = nm.div_ceil(CHUNK) - recorded.div_ceil(CHUNK);
+        let records = self.contact.walls[..recorded]
+            .par_chunks_mut(CHUNK)
+            .map(Some)
+            .chain((0..unrecorded).into_par_iter().map(|_| None));
+        (pos.into_par_iter(), vel.into_par_iter(), spin.into_par_iter(), wall_hist, records)
             .into_par_iter()
             .enumerate()
-            .map(|(c, ((x, y, z), (vx, vy, vz), (wx, wy, wz), wh))| {
+            .map(|(c, ((x, y, z), (vx, vy, vz), (wx, wy, wz), wh, mut rec))| {
                 let o = c * CHUNK;
                 let mut moved = false;
                 for k in 0..x.len() {
@@ -266,8 +336,16 @@ impl Dem {
                         let spin = cross([ra * wx[k], ra * wy[k], ra * wz[k]], n);
                         let v_rel = [-vx[k] - spin[0], -vy[k] - spin[1], -vz[k] - spin[2]];
                         let c = ContactInput { n, delta, v_rel, sqrt_m: (1.0 / inv_m[a]).sqrt(), r_eff: ra };
-                        let fw = contact_force(law, &c, h, dt);
+                        let (fw, power) = contact_force(law, &c, h, dt);
                         let tw = cross(n, fw);
+                        if let Some(rec) = rec.as_deref_mut() {
+                            // branch from the centre to the wall plane, the wall at rest
+                            let arm = [n[0] * gap, n[1] * gap, n[2] * gap];
+                            let values = contact_values(arm, fw, [vx[k], vy[k], vz[k]], [0.0; 3], power, 0.5);
+                            let r: &mut WallRecord = &mut rec[k][w];
+                            r[..3].copy_from_slice(&[pos[2], ra, pos[2] + arm[2]]);
+                            r[3..].copy_from_slice(&values);
+                        }
                         for c in 0..3 {
                             f[c] += fw[c];
                             t[c] += ra * tw[c];

@@ -30,7 +30,7 @@ impl Lagrangian<'_> {
         while self.settle_steps < end {
             let update = self.settle_steps.is_multiple_of(self.fluid_every) && fluid;
             let checkpoint = self.settle_steps.is_multiple_of(CHECK_STEPS);
-            self.dem_step(update);
+            self.dem_step(update, false);
             self.settle_steps += 1;
             if update {
                 self.average();
@@ -137,6 +137,9 @@ impl Lagrangian<'_> {
         self.beta = v(0.0);
         self.tau_t = v(0.0);
         self.stats = Stats::new(cells);
+        if self.granular.is_some() {
+            self.granular = Some(super::granular::GranularStats::new(cells));
+        }
         self.zero_faces = vec![0.0; cells + 1];
         self.cell_volume = self.cfg.domain.length * self.cfg.domain.width * dz;
         self.bed_surface = surface;

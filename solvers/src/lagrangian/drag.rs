@@ -319,6 +319,14 @@ impl FluidForces {
         &self.left
     }
 
+    /// Fluid force k_p u_r on particle `a` of the last evaluation that included it (N);
+    /// zero before any.
+    #[inline]
+    pub fn force(&self, a: usize) -> [f64; 3] {
+        let (k, u) = (self.k[a], self.ur[a]);
+        [k * u[0], k * u[1], k * u[2]]
+    }
+
     /// Particle response time m / k_p of particle `a` (s), for diagnostics.
     pub fn response_time(&self, p: &Particles, a: usize) -> f64 {
         let m = self.rho_p * super::setup::sphere_volume(2.0 * p.radius[a]);

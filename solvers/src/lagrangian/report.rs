@@ -61,6 +61,11 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         p.push("tau_f", av.tau_face.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect());
         p.push("nu_t", av.nu_t);
         p.push("beta", av.beta);
+        if let Some(g) = m.granular_averages() {
+            for (name, values) in g.columns() {
+                p.push(name, values.to_vec());
+            }
+        }
     }
     let sample_period = m.dt() * m.fluid_every() as f64;
     let blocked = if samples > 0 { Some(m.stats().qs.estimate()) } else { None };

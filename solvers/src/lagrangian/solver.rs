@@ -13,6 +13,7 @@ use super::config::{Config, FluidMode, Initial};
 use super::contact::{ContactLaw, ContactModel};
 use super::dem::Dem;
 use super::drag::{DragModels, FluidField, FluidForces};
+use super::granular::GranularStats;
 use super::particles::Particles;
 use super::setup::{self, Material};
 use super::stats::{Stats, Steady};
@@ -64,6 +65,8 @@ pub struct Lagrangian<'a> {
     pub(super) beta: Vec<f64>,
     pub(super) tau_t: Vec<f64>,
     pub(super) stats: Stats,
+    /// the granular fields' sums, when the scene asks for them
+    pub(super) granular: Option<GranularStats>,
     pub(super) steady: Steady,
     pub(super) cell_volume: f64,
     pub(super) fluid_every: u64,
@@ -147,12 +150,16 @@ impl<'a> Lagrangian<'a> {
         let mut forces = FluidForces::new(n, scene.seed, scene.fluid.density, scene.fluid.viscosity, rho_p);
         forces.fallback_period = s.numerics.fluid_period;
         let cells = cfg.domain.cells;
-        let height =
-            if s.numerics.fluid == FluidMode::Off || cfg.settings.numerics.bottom == super::config::Bottom::Periodic {
-                1.0
-            } else {
-                cfg.column_height()
-            };
+        // without a column and without samples the grid only sizes the drag's cell look-up
+        let columnless = s.numerics.fluid == FluidMode::Off && !s.numerics.takes_samples();
+        let height = if columnless
+            || cfg.settings.numerics.bottom == super::config::Bottom::Periodic
+            || cfg.column_height() <= 0.0
+        {
+            1.0
+        } else {
+            cfg.column_height()
+        };
         let grid = Grid::uniform(cells, height)
             .map_err(|e| Error::Invalid(format!("{file}: key `solver.lagrangian.cells`: {e}")))?;
         let dz = grid.dz()[0];
@@ -231,6 +238,11 @@ impl<'a> Lagrangian<'a> {
             beta: v(0.0),
             tau_t: v(0.0),
             stats: Stats::new(cells),
+            granular: s
+                .numerics
+                .granular_fields
+                .unwrap_or(s.numerics.fluid != FluidMode::Off)
+                .then(|| GranularStats::new(cells)),
             steady: Steady::new(s.numerics.steady_window, s.numerics.steady_tolerance, s.numerics.steady_windows),
             cell_volume: cfg.domain.length * cfg.domain.width * dz,
             fluid_every,
@@ -359,15 +371,17 @@ impl<'a> Lagrangian<'a> {
         DragModels { drag: self.drag, hindrance: self.hindrance, fluctuation: self.fluctuation }
     }
 
-    /// One DEM step with the fluid force of the current fluid field.
-    pub(super) fn dem_step(&mut self, all: bool) {
+    /// One DEM step with the fluid force of the current fluid field; with `sampled`, the
+    /// step takes the contact sums of the granular fields.
+    pub(super) fn dem_step(&mut self, all: bool, sampled: bool) {
         if self.cfg.settings.numerics.fluid != FluidMode::Off {
             let upto = if all { self.dem.p.len() } else { self.dem.p.n_mobile };
             let models = self.models();
             let dt = self.dem.dt();
             self.forces.evaluate(&self.dem.p, &self.field, &models, dt, upto, &mut self.dem.ext);
         }
-        self.dem.step();
+        let slices = sampled.then(|| self.slices());
+        self.dem.step_sampled(slices);
     }
 
     /// Average the particles on the cells and refresh phi (and the hindrance convention)
@@ -506,6 +520,7 @@ impl<'a> Lagrangian<'a> {
                 None => &self.zero_faces,
             };
             self.stats.add(&self.sums, &self.field.u, &self.tau_t, &self.field.nu_t, &self.beta, tau_face, qs);
+            self.sample_granular();
         }
         Ok(())
     }
@@ -531,10 +546,14 @@ impl<'a> Lagrangian<'a> {
             // the initial temperature Haff's law starts from
             self.stats.cooling.add(self.time, self.dem.p.temperature(), self.haff);
         }
-        self.dem_step(update && fluid != FluidMode::Off);
+        let sampled = update && self.sample_due();
+        self.dem_step(update && fluid != FluidMode::Off, sampled && self.granular.is_some());
         if update {
             let r = if fluid == FluidMode::Off { self.check() } else { self.fluid_update() };
             r.map_err(Ending::Unstable)?;
+            if fluid == FluidMode::Off && sampled {
+                self.dry_sample();
+            }
             if self.vtk.is_some() && self.time >= self.next_vtk {
                 self.write_vtk();
                 self.next_vtk += self.cfg.settings.numerics.vtk_period;

@@ -21,9 +21,9 @@ pub use super::blocking::{BlockEstimate, Blocking, NoEstimate, BLOCK_LEVELS, LON
 pub struct Stats {
     /// samples taken
     pub samples: usize,
-    vol: Vec<f64>,
-    v: [Vec<f64>; 3],
-    vv: [Vec<f64>; 4],
+    pub(super) vol: Vec<f64>,
+    pub(super) v: [Vec<f64>; 3],
+    pub(super) vv: [Vec<f64>; 4],
     u_f: Vec<f64>,
     reynolds: Vec<f64>,
     nu_t: Vec<f64>,
