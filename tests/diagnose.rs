@@ -57,10 +57,13 @@ fn assert_vanishes(d: &Diagnosis, label: &str, quantity: &str, tol: f64, min_cel
 fn eulerian_kinetic_run_against_its_own_closure() {
     let d = run_and_diagnose(scene("cases/chassagne2023/case01.toml", &["domain.cells=60"]), &[]);
     let label = "frictional_collisional";
-    for q in ["g0 closure", "g0 chialvo_sundaresan_friction", "Gamma", "heat flux", "J_int eq 3.13"] {
+    for q in ["Gamma", "heat flux", "J_int eq 3.13"] {
         assert_vanishes(&d, label, q, 1e-10, 10);
     }
-    assert_vanishes(&d, label, "viscosity F2", 1e-10, 5);
+    // g0 and F2 only above the packed bed (the highest cell with an elastic pressure)
+    for q in ["g0 closure", "g0 chialvo_sundaresan_friction", "viscosity F2"] {
+        assert_vanishes(&d, label, q, 1e-10, 5);
+    }
     // eq 3.13 dissipates more than eq 2.25 (c_J > 3): the linear closure under-predicts
     let linear = d.find(label, "J_int eq 2.25").expect("eq 2.25");
     assert!(linear.relative_bias() > 0.05, "{}", d.text());

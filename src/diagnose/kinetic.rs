@@ -19,7 +19,7 @@ use super::fields::RunFields;
 /// of eq 3.2 fitted to the extracted g0, and the value eq 3.3 gives at the grains' mu_p.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct G0Fit {
-    /// least-squares a of g0 - g0_CS = a phi^2 / (phi_max - phi)^1.5 over the cells used
+    /// relative least-squares a (weights 1/g0^2) of g0 - g0_CS = a phi^2 / (phi_max - phi)^1.5 over the cells used
     pub a: f64,
     /// a(mu_p) of eq 3.3 with the paper's a0 = 0.58, a_max = 3.70, delta = 0.54
     pub a_eq33: f64,
@@ -29,11 +29,8 @@ pub struct G0Fit {
     pub cells: usize,
 }
 
-/// Largest share of p_p the closure's elastic pressure may carry in a cell whose g0 is
-/// extracted.
-pub const ELASTIC_SHARE_MAX: f64 = 0.5;
-
 /// A cell's state for the kinetic comparisons.
+#[derive(Clone)]
 struct Cell {
     k: usize,
     phi: f64,
@@ -81,7 +78,13 @@ pub fn compare(
         })
         .collect();
 
-    let (mut out, fit) = radial_distribution(label, kt, f, &cells, z);
+    // the collisional layer: above the highest cell where the closure's enduring-contact
+    // pressure acts. Below it (the packed bed, and the fixed rough layer of a DEM whose
+    // phi can dip under the onset) contacts last and T -> 0, so eq 3.1 and the viscosity
+    // ratio divide a quasi-static stress by a vanishing temperature
+    let bed_top = (0..f.rows()).filter(|&k| phi[k].is_finite() && kt.elastic_pressure(phi[k]) > 0.0).max();
+    let collisional: Vec<Cell> = cells.iter().filter(|c| bed_top.is_none_or(|b| c.k > b)).cloned().collect();
+    let (mut out, fit) = radial_distribution(label, kt, f, &collisional, z);
 
     let mut c = Comparison::new(label, "Gamma", "Gamma [W/m^3]", "phi");
     for cell in cells.iter().filter(|c| gamma_diss[c.k].is_finite()) {
@@ -92,9 +95,9 @@ pub fn compare(
 
     // the kinetic viscosity alone: cells without enduring-contact pressure (p_el = 0)
     let mut c = Comparison::new(label, "viscosity F2", "eta / (rho_p d sqrt(T)) [-]", "phi");
-    for cell in &cells {
+    for cell in &collisional {
         let (g, k) = (gamma[cell.k], cell.k);
-        if g == 0.0 || !g.is_finite() || !mu[k].is_finite() || kt.elastic_pressure(cell.phi) != 0.0 {
+        if g == 0.0 || !g.is_finite() || !mu[k].is_finite() {
             continue;
         }
         let measured = mu[k] * cell.p / (rho_p * d * cell.t.sqrt() * g);
@@ -120,9 +123,9 @@ pub fn compare(
 
 /// g0 extracted from the pressure and held against the closure's own g0 and the library's
 /// models. With F1 = phi + 2 (1+e) phi^2 g0 (Garzo-Dufty, eq 2.19 and table 1) linear
-/// in g0, the measured F1 = (p_p - p_el) / (rho_p T) gives
-/// g0 = g0_closure (F1 - phi) / (F1_closure - phi): eq 3.1 with the closure's e and its
-/// elastic pressure p_el (0 below phi_rlp, where this is eq 3.1 exactly).
+/// in g0, the measured F1 = p_p / (rho_p T) gives g0 = g0_closure (F1 - phi) /
+/// (F1_closure - phi): eq 3.1 with the closure's e and the total pressure, as Chassagne
+/// et al. do where the elastic pressure vanishes (above the packed bed).
 fn radial_distribution(
     label: &str,
     kt: &dyn KineticTheory,
@@ -146,14 +149,7 @@ fn radial_distribution(
     let (mut sxy, mut sxx, mut n) = (0.0, 0.0, 0);
     for cell in cells {
         let c = &cell.coef;
-        let p_el = kt.elastic_pressure(cell.phi);
-        // where enduring contacts carry most of the pressure, p_p - p_el is the difference
-        // of two nearly equal numbers: g0 is extracted where the collisions carry at
-        // least half of it
-        if p_el > ELASTIC_SHARE_MAX * cell.p {
-            continue;
-        }
-        let f1 = (cell.p - p_el) / (f.rho_p * cell.t);
+        let f1 = cell.p / (f.rho_p * cell.t);
         let g0 = c.g0 * (f1 - cell.phi) / (c.f1 - cell.phi);
         if !(g0.is_finite() && c.g0.is_finite() && cell.phi < phi_max) {
             continue;
@@ -163,8 +159,10 @@ fn radial_distribution(
         for (cmp, (_, m)) in library.iter_mut().zip(&models) {
             cmp.push(zk, cell.phi, g0, m.g0(cell.phi, phi_max, mu_p));
         }
-        let x = cell.phi * cell.phi / (phi_max - cell.phi).powf(1.5);
-        sxy += x * (g0 - carnahan_starling(cell.phi));
+        // relative least squares: g0 spans three decades between the saltation layer
+        // and the bed, and an absolute fit would be the densest cell's alone
+        let x = cell.phi * cell.phi / (phi_max - cell.phi).powf(1.5) / g0;
+        sxy += x * (g0 - carnahan_starling(cell.phi)) / g0;
         sxx += x * x;
         n += 1;
     }
