@@ -2,6 +2,10 @@
 //! bed at rest to steady state, at the paper's resolution (120 cells, d/4) and at 400 cells.
 //! Also the k-omega channel at Re_tau = 587.19 (cases/verification/channel_re590.toml, 120
 //! stretched cells) to steady state, by the Eulerian solver and by `FluidColumn::solve_steady`.
+//! Also the sheet-flow and dilute-suspension scenes of issue 12 item 6 (Revil-Baudard mobile
+//! bed, every closure set; Cheng's dilute cases), each from its initial state to the end of
+//! its run (steady state, or its end_time when the residual criterion is not met: the
+//! sheet-flow scenes with suspension end there, docs/benchmarks.md).
 //! `cargo bench --bench eulerian`
 
 use std::path::Path;
@@ -68,5 +72,33 @@ fn channel_k_omega(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, case01, channel_k_omega);
+fn sheet_flow_and_dilute(c: &mut Criterion) {
+    saltus_closures::link();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases");
+    let mut group = c.benchmark_group("issue12_scenes_to_end");
+    group.sample_size(10);
+    for rel in [
+        "revil_baudard2015/mobile_bed_kinetic_mixing_length.toml",
+        "revil_baudard2015/mobile_bed_mu_i_mixing_length.toml",
+        "revil_baudard2015/mobile_bed_kinetic_k_omega.toml",
+        "revil_baudard2015/mobile_bed_mu_i_k_omega.toml",
+        "revil_baudard2015/fixed_bed_k_omega.toml",
+        "cheng/dilute_kiger_pan.toml",
+        "cheng/dilute_muste_ns1.toml",
+    ] {
+        let scene = Scene::from_file_with(root.join(rel), &[]).expect("scene");
+        let cfg = Config::from_scene(&scene).expect("config");
+        group.bench_function(rel, |b| {
+            b.iter(|| {
+                let mut m = Eulerian::new(&scene, cfg.clone()).expect("solver");
+                let ending = drive(&mut m, &mut Quiet).0;
+                assert!(!matches!(ending, Ending::Unstable(_)), "{rel}: {ending:?}");
+                m.steps()
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, case01, channel_k_omega, sheet_flow_and_dilute);
 criterion_main!(benches);

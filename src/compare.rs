@@ -184,6 +184,9 @@ pub struct CompareReport {
     pub compared: Vec<String>,
     /// per variant, the RMS difference of each compared column (`None`: no run or no row)
     pub rms: Vec<Vec<Option<f64>>>,
+    /// per variant, the bed-aligned metric ([`errors::ALIGNED`] columns, after the `rms_`
+    /// ones); empty when the reference data have no `phi` column
+    pub aligned: Vec<[Option<f64>; 4]>,
 }
 
 impl CompareReport {
@@ -197,6 +200,9 @@ impl CompareReport {
         let mut header = vec!["variant".to_string()];
         header.extend(COLUMNS.iter().map(|c| c.to_string()));
         header.extend(self.compared.iter().map(|c| format!("rms_{c}")));
+        if !self.aligned.is_empty() {
+            header.extend(errors::ALIGNED.iter().map(|c| c.to_string()));
+        }
         header.push("error".into());
         let rows = self
             .runs
@@ -208,7 +214,8 @@ impl CompareReport {
                     Some(rep) => row.extend(summary_cells(&rep.summary, precise)),
                     None => row.extend(COLUMNS.iter().map(|_| String::new())),
                 }
-                for e in self.rms.get(k).into_iter().flatten() {
+                let aligned = self.aligned.get(k).into_iter().flatten();
+                for e in self.rms.get(k).into_iter().flatten().chain(aligned) {
                     row.push(match (e, precise) {
                         (None, _) => String::new(),
                         (Some(v), true) => format!("{v:?}"),
@@ -338,8 +345,25 @@ pub fn run(cmp: &Comparison, out: &Path, progress: bool) -> anyhow::Result<Compa
         })
         .collect();
     let compared = sources.into_iter().map(|(c, _)| c).collect();
-    let mut report =
-        CompareReport { out: out.to_path_buf(), runs, table: out.join(TABLE), figure: None, warnings, compared, rms };
+    // the bed-aligned metric of a sheet flow, when the reference data have phi
+    let tables: Vec<&crate::table::Table> = reference.iter().map(|(_, t)| t).collect();
+    let aligned = if tables.iter().any(|t| t.get("phi").is_some()) {
+        runs.iter()
+            .map(|r| r.report.as_ref().and_then(|rep| errors::aligned(&rep.profiles, &tables)).unwrap_or_default())
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let mut report = CompareReport {
+        out: out.to_path_buf(),
+        runs,
+        table: out.join(TABLE),
+        figure: None,
+        warnings,
+        compared,
+        rms,
+        aligned,
+    };
 
     let (header, rows) = report.rows(true);
     let mut w =

@@ -42,6 +42,29 @@ pub fn rms_difference(run: &Profiles, reference: &Table, name: &str) -> Option<(
     (count > 0).then(|| ((sum / count as f64).sqrt(), count))
 }
 
+/// Columns of the bed-aligned metric of issue 12 (`saltus_solvers::bed_aligned`), written
+/// after the `rms_` columns when the reference data have a `phi` column with a packed bed:
+/// the shift of the run onto the data's bed surface (m), the RMS phi over the reference rows
+/// with phi > 0, the RMS of the run's `u_f` against the reference velocity (its `u_f`
+/// column, else its `u_p` column: the ACVP velocity of the Revil-Baudard data, which the
+/// issue's metric compares with the fluid velocity), and the run's velocity at the top cell.
+pub const ALIGNED: [&str; 4] = ["bed_shift", "aligned_rms_phi", "aligned_rms_u_f", "surface_u_f"];
+
+/// The [`ALIGNED`] values of `run` against the reference tables (each column from the first
+/// table that has it); `None` when no table has `phi` with a half-bed level.
+pub fn aligned(run: &Profiles, reference: &[&Table]) -> Option<[Option<f64>; 4]> {
+    let phi_ref = reference.iter().find(|t| t.get("phi").is_some())?;
+    let (dz, dphi) = (phi_ref.get("z")?, phi_ref.get("phi")?);
+    let u_ref = ["u_f", "u_p"].iter().find_map(|c| reference.iter().find_map(|t| Some((t.get("z")?, t.get(c)?))));
+    let (z, phi, u) = (run.get("z")?, run.get("phi")?, run.get("u_f")?);
+    let a = saltus_solvers::bed_aligned::aligned(z, phi, u, dz, dphi, u_ref);
+    let top = u.last().copied().filter(|v| v.is_finite());
+    Some(match a {
+        Some(a) => [Some(a.shift), Some(a.phi.0), a.u.map(|e| e.0), top],
+        None => [None, None, None, top],
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

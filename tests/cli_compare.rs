@@ -80,6 +80,7 @@ fn compare_runs_both_models_of_case01() {
     ];
     if dem {
         expected.extend(["rms_phi", "rms_u_p", "rms_u_f", "rms_theta_g"]);
+        expected.extend(["bed_shift", "aligned_rms_phi", "aligned_rms_u_f", "surface_u_f"]);
     }
     expected.push("error");
     assert_eq!(header, expected);

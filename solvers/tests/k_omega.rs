@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use saltus_core::scene::{parse_table, Scene};
+use saltus_solvers::bed_aligned;
 use saltus_solvers::eulerian::{Config, Eulerian};
 use saltus_solvers::run::{drive, Ending, Quiet};
 
@@ -345,30 +346,16 @@ fn sheet_flow_rms(m: &Eulerian<'_>) -> Option<(f64, f64, f64)> {
     Some((rms(m.u_f(), &u), rms(m.u_p(), &u), rms(m.phi(), &with_phi)))
 }
 
-/// First level above the packed bed where phi falls to half its bed value (the value at
-/// the bottom), linearly interpolated: the bed surface of the issue-12 metric.
-fn half_bed_level(z: &[f64], phi: &[f64]) -> Option<f64> {
-    let half = 0.5 * phi.first()?;
-    (1..z.len())
-        .find(|&j| phi[j] < half && phi[j - 1] >= half)
-        .map(|j| z[j - 1] + (half - phi[j - 1]) / (phi[j] - phi[j - 1]) * (z[j] - z[j - 1]))
-}
-
-/// The issue-12 metric: the run shifted rigidly so that its [`half_bed_level`] sits on the
-/// data's (phi file, bed value 0.55); RMS of u_f over the 39 ACVP points and of phi over the
-/// 62 points with phi > 0. Returns (shift (m), RMS u_f, RMS phi).
+/// The issue-12 metric ([`saltus_solvers::bed_aligned`]) against the data files: (shift (m),
+/// RMS u_f over the 39 ACVP points, RMS phi over the 62 points with phi > 0).
 fn aligned_rms(m: &Eulerian<'_>) -> Option<(f64, f64, f64)> {
     let dir = root().join("../shared/data/revil_baudard2015_sheetflow");
     let u = rows(&dir.join("Revil-Baudard2015_uRxz.txt"))?;
     let p = rows(&dir.join("Revil-Baudard2015_phi.txt"))?;
-    let (pz, pp): (Vec<f64>, Vec<f64>) = p.iter().map(|r| (r[0], r[1])).unzip();
-    let shift = half_bed_level(m.z(), m.phi())? - half_bed_level(&pz, &pp)?;
-    let rms = |f: &[f64], data: &[&Vec<f64>]| {
-        (data.iter().map(|r| (interp(m.z(), f, r[0] + shift) - r[1]).powi(2)).sum::<f64>() / data.len() as f64).sqrt()
-    };
-    let all_u: Vec<&Vec<f64>> = u.iter().collect();
-    let with_phi: Vec<&Vec<f64>> = p.iter().filter(|r| r[1] > 0.0).collect();
-    Some((shift, rms(m.u_f(), &all_u), rms(m.phi(), &with_phi)))
+    let col = |t: &[Vec<f64>], k: usize| -> Vec<f64> { t.iter().map(|r| r[k]).collect() };
+    let (uz, uu) = (col(&u, 0), col(&u, 1));
+    let a = bed_aligned::aligned(m.z(), m.phi(), m.u_f(), &col(&p, 0), &col(&p, 1), Some((&uz, &uu)))?;
+    Some((a.shift, a.u?.0, a.phi.0))
 }
 
 /// The Revil-Baudard sheet flow under the three turbulence closures of
@@ -380,12 +367,16 @@ fn aligned_rms(m: &Eulerian<'_>) -> Option<(f64, f64, f64)> {
 fn revil_baudard_turbulence_models() {
     let ko = "closures.turbulence={type=\"k_omega\"}".to_string();
     let bf = "closures.turbulence={type=\"mixing_length\", form=\"berzi_fraccarollo\", phi_max=0.61}".to_string();
-    let runs: [(&str, &str, Vec<String>); 5] = [
+    let runs: [(&str, &str, Vec<String>); 9] = [
         ("mu(I), Li-Sawamoto ML", "cases/revil_baudard2015/sheet_flow_mu_i.toml", vec![]),
         ("mu(I), Berzi-Fraccarollo ML", "cases/revil_baudard2015/sheet_flow_mu_i.toml", vec![bf]),
         ("mu(I), k-omega (compare variant)", "cases/revil_baudard2015/sheet_flow_mu_i.toml", vec![ko]),
         ("mu(I), k-omega (scene)", "cases/revil_baudard2015/sheet_flow_k_omega_mu_i.toml", vec![]),
         ("kinetic theory, k-omega (scene)", "cases/revil_baudard2015/sheet_flow_k_omega_kinetic.toml", vec![]),
+        ("mobile bed: mu(I) + ML", "cases/revil_baudard2015/mobile_bed_mu_i_mixing_length.toml", vec![]),
+        ("mobile bed: kinetic + ML", "cases/revil_baudard2015/mobile_bed_kinetic_mixing_length.toml", vec![]),
+        ("mobile bed: kinetic + k-omega", "cases/revil_baudard2015/mobile_bed_kinetic_k_omega.toml", vec![]),
+        ("mobile bed: mu(I) + k-omega", "cases/revil_baudard2015/mobile_bed_mu_i_k_omega.toml", vec![]),
     ];
     for (label, file, set) in runs {
         let s = load(file, &set);
@@ -426,4 +417,29 @@ fn stretching_is_range_checked_and_refines_the_wall() {
     let dz = m.dz();
     assert!((dz.iter().sum::<f64>() - H).abs() < 1e-15);
     assert!(dz.windows(2).all(|w| (w[1] / w[0] - 1.1).abs() < 1e-9));
+}
+
+/// Issue 12 item 3, the best closure set on the Revil-Baudard mobile bed with turbulent
+/// suspension (`mobile_bed_kinetic_mixing_length.toml`: kinetic theory, mixing length
+/// kappa 0.225, `schmidt` drift): under the issue's metric (bed surfaces aligned) it must
+/// be ahead of the peer's better run on both, RMS fluid velocity <= 0.05 m/s and RMS phi
+/// <= 0.025 (the target; measured 0.039 m/s and 0.0065 at 300 s, 0.039 and 0.0062 at
+/// 1000 s, docs/benchmarks.md), with sediment in suspension above the sheet (phi > 1e-4
+/// 2 cm above the bed surface, where the data have 0.02-0.01) and the mass conserved.
+/// 300 s simulated (a few seconds): the metric changes by < 5e-4 between 300 and 1000 s.
+#[test]
+fn revil_baudard_mobile_bed_best_set_meets_the_target() {
+    let s = load(
+        "cases/revil_baudard2015/mobile_bed_kinetic_mixing_length.toml",
+        &["solver.eulerian.end_time=300".to_string()],
+    );
+    let (m, ending, _) = run(&s);
+    assert!(!matches!(ending, Ending::Unstable(_)), "{ending:?}");
+    assert!(m.mass_error() < 1e-10, "mass error {:e}", m.mass_error());
+    let z_b = bed_aligned::half_bed_level(m.z(), m.phi()).expect("a bed surface");
+    let suspended = bed_aligned::interpolate(m.z(), m.phi(), z_b + 0.02);
+    assert!(suspended > 1e-4, "phi 2 cm above the bed {suspended:e}");
+    let Some((shift, uf, phi)) = aligned_rms(&m) else { return };
+    println!("shift {:+.2} mm: RMS u_f {uf:.4} m/s, RMS phi {phi:.4}", 1e3 * shift);
+    assert!(uf <= 0.05 && phi <= 0.025, "RMS u_f {uf:.4} m/s, RMS phi {phi:.4}");
 }

@@ -50,7 +50,7 @@ pub enum KOmegaWall {
 /// * Defaults (table 1): alpha_0 = 1/9, alpha*_0 = 0.024, Re_k = 6, Re_w = 2.95,
 ///   Re_beta = 8, C_mu = 0.09, sigma_k = sigma_w = 2, C_s = 1, C_1w = 0.52, C_2w = 0.072,
 ///   C_3w = 0.14, C_4w = 0; text: C_t = 1/6, kappa = 0.41, phi_b = 0.55, k_s = 2.5 d;
-///   two calibrated constants (see decisions): C_s = 0.3 (table 1: 1) and K_r = 65 (text:
+///   two calibrated constants (see decisions): C_s = 0.25 (table 1: 1) and K_r = 65 (text:
 ///   80); sigma_c = 1 (not given in the paper, see decisions).
 /// * Valid range: coefficients positive (C_3w, C_4w, C_s non-negative); phi_b in (0, 1).
 ///   Low-Reynolds wall-bounded flow with the first cell in the viscous sublayer
@@ -81,10 +81,13 @@ pub enum KOmegaWall {
 ///   0.65-0.72 u* above the law, K_r = 65 0.02-0.06 u* above it (the same equations with
 ///   the damping functions off: K_r = 100 gives -0.27 u*). The same K_r holds for every
 ///   scene; it only enters omega_bed (rough wall and in-bed relaxation).
-/// * C_s = 0.3, not the 1 of table 1. Cheng calibrated C_s "using the sheet flow
+/// * C_s = 0.25, not the 1 of table 1. Cheng calibrated C_s "using the sheet flow
 ///   experimental dataset" of Revil-Baudard et al. (their section 2.3.1) with a DEM sheet;
-///   the same calibration on the same data with the continuum sheet of the Eulerian solver
-///   gives 0.3 (SedFoam's default for this coefficient, B of Cheng et al. 2017a, is 0.25).
+///   the same calibration on the same data with the continuum sheet of the Eulerian solver,
+///   with turbulent suspension on and the bed at the measured packing 0.55 (scenes
+///   mobile_bed_*_k_omega.toml), gives 0.25 for both rheologies, the value of SedFoam's
+///   1DSheetFlow tutorial for this coefficient (B = 0.25, twophaseRASProperties; B of
+///   Cheng et al. 2017a). Without suspension and with beds at 0.59-0.60 the optimum was 0.3.
 ///   With C_s = 1 the sheet layer laminarises: where k is small, omega is set by the mean
 ///   shear (omega ~ S at Re_t -> 0), t_l = C_t/(C_mu omega) shrinks, St = t_p/t_l reaches
 ///   3-5, lambda -> 0.01 and the drag damping (12-18 /s) holds k down; the Reynolds stress in
@@ -176,7 +179,7 @@ impl Default for KOmega {
             c_mu: 0.09,
             sigma_k: 2.0,
             sigma_omega: 2.0,
-            c_s: 0.3,
+            c_s: 0.25,
             c_t: 1.0 / 6.0,
             c_1omega: 0.52,
             c_2omega: 0.072,

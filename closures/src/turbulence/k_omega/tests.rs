@@ -41,7 +41,7 @@ fn defaults_are_table_1() {
         [1.0 / 9.0, 0.024, 6.0, 2.95, 8.0, 0.09, 2.0, 2.0]
     );
     // C_s: recalibrated from table 1's 1 on the Revil-Baudard sheet flow (see the decisions)
-    assert_eq!([m.c_s, m.c_1omega, m.c_2omega, m.c_3omega, m.c_4omega], [0.3, 0.52, 0.072, 0.14, 0.0]);
+    assert_eq!([m.c_s, m.c_1omega, m.c_2omega, m.c_3omega, m.c_4omega], [0.25, 0.52, 0.072, 0.14, 0.0]);
     // K_r: recalibrated from the paper's 80 for the low-Re functions (see the decisions)
     assert_eq!([m.roughness, m.k_r, m.phi_bed], [2.5, 65.0, 0.55]);
     assert!(m.validate().is_ok());
