@@ -1,5 +1,6 @@
 //! # Lagrangian solver: soft-sphere DEM coupled to the 1D fluid column (Maurin et al. 2015)
 
+mod access;
 pub mod averaging;
 pub mod blocking;
 mod checkpoint;
