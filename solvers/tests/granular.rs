@@ -21,6 +21,8 @@
 //! integrals are the slice averages of int_z^top ([`from_top`]). phi_m is the volume fraction of the mobile grains: the
 //! comparison stops where the fixed grains of the rough bottom reach.
 
+mod common;
+
 use std::path::Path;
 
 use saltus_core::scene::Scene;
@@ -148,16 +150,7 @@ impl Balance {
 
 /// A coupled bed of 10 d x 10 d x 6 d (about 700 mobile grains of case 1), theta about 0.17.
 fn coupled_bed(set: &[&str]) -> Scene {
-    let mut all = vec![
-        "solver.type=lagrangian",
-        "closures.turbulence={type=\"mixing_length\", form=\"li_sawamoto\", phi_max=0.61}",
-        "solver.lagrangian.length=0.06",
-        "solver.lagrangian.width=0.06",
-        "domain.bed_height=0.036",
-        "domain.water_depth=0.03",
-        "solver.lagrangian.cells=120",
-        "solver.lagrangian.settle_time=0.1",
-    ];
+    let mut all = common::SMALL_COUPLED_BED.to_vec();
     all.extend_from_slice(set);
     scene("chassagne2023/case01.toml", &all)
 }

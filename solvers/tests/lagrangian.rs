@@ -1,6 +1,8 @@
 //! Verification of the Lagrangian (DEM) solver against closed-form results, the kinetic
 //! theory of the closure library and its own determinism. Scenes: cases/verification/dem_*.toml.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use saltus_core::scene::Scene;
@@ -154,20 +156,12 @@ fn homogeneous_cooling_follows_haff_with_the_kinetic_theory_rate() {
 
 /// A coupled bedload run small enough for CI: 10 d x 10 d cell, 6 d bed, DRW on.
 fn small_bed(set: &[&str]) -> Scene {
-    let mut all = vec![
-        "solver.type=lagrangian",
-        // the mixing length of the DEM set-up (compare_case01_solvers.toml)
-        "closures.turbulence={type=\"mixing_length\", form=\"li_sawamoto\", phi_max=0.61}",
-        "solver.lagrangian.length=0.06",
-        "solver.lagrangian.width=0.06",
-        "domain.bed_height=0.036",
-        "domain.water_depth=0.03",
-        "solver.lagrangian.cells=120",
-        "solver.lagrangian.settle_time=0.1",
+    let mut all = common::SMALL_COUPLED_BED.to_vec();
+    all.extend_from_slice(&[
         "solver.lagrangian.end_time=0.1",
         "solver.lagrangian.stats_start=0.0",
         "closures.fluctuation={type=\"drw\"}",
-    ];
+    ]);
     all.extend_from_slice(set);
     scene("chassagne2023/case01.toml", &all)
 }
