@@ -24,6 +24,9 @@ pub(super) struct Coefficients {
     pub beta: Vec<f64>,
     /// 1 + d ln C / d ln Re (ux / slip)^2: the tangent of the streamwise drag
     pub drag_tangent: Vec<f64>,
+    /// 1 + d ln C / d ln Re (w_r / slip)^2: the tangent of the wall-normal drag, with which
+    /// the phi step linearises the settling velocity (see `solve_phi`)
+    pub normal_tangent: Vec<f64>,
     /// C_D^inf / C_D(Re*) for the quadratic drag dissipation (eq 3.13)
     pub cd_ratio: Vec<f64>,
     /// eps^2 / C, the wall-normal mobility of the volume-fraction flux
@@ -107,6 +110,7 @@ impl Coefficients {
             k_drag: v(0.0),
             beta: v(0.0),
             drag_tangent: v(1.0),
+            normal_tangent: v(1.0),
             cd_ratio: v(0.0),
             mobility: v(0.0),
             pres: vec![Pressure::default(); n],
@@ -264,7 +268,10 @@ impl Eulerian<'_> {
             // the ratio before the square: ux^2 and slip^2 underflow to 0 (0/0) for a slip
             // below 1e-154 m/s, as the first implicit step of a lid-driven column leaves
             // deep under a fine grid (Couette at 133 cells and more)
-            co.drag_tangent[i] = 1.0 + if slip > 0.0 { slope * (ux / slip).powi(2) } else { 0.0 };
+            let along = if slip > 0.0 { (ux / slip).powi(2) } else { 0.0 };
+            co.drag_tangent[i] = 1.0 + slope * along;
+            // (w_r / slip)^2 = 1 - (ux / slip)^2: the slip is the hypotenuse of the two
+            co.normal_tangent[i] = 1.0 + if slip > 0.0 { slope * (1.0 - along).max(0.0) } else { 0.0 };
             co.beta[i] = phi * cc;
             co.k_drag[i] = cc / eps;
             co.mobility[i] = eps * eps / cc;

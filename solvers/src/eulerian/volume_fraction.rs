@@ -59,15 +59,26 @@ impl Eulerian<'_> {
             // local rheologies: factor r on the pressure part of the flux and the deferred
             // correction of the weight; kinetic theory: r = 1 and the MUSCL correction below
             let wb = if well_balanced { Some(self.well_balanced_face(j, m, gw, pl.p, pr.p)) } else { None };
-            let mp = m * wb.map_or(1.0, |w| w.0);
+            // Newton step of the wall-normal drag (see `settling_newton`): the mobility of the
+            // lagged slip divided by the drag's tangent, plus the old settling velocity carried
+            // upwind, implicit, with the weight 1 - 1/t
+            let (t, w0) = self.settling_newton(j, up);
+            let mg = m / t;
+            let mp = mg * wb.map_or(1.0, |w| w.0);
             self.sc.drift_lr[2 * j] = dl;
             self.sc.drift_lr[2 * j + 1] = dr;
             let mut cl = mp * pl.a / h + dl / h;
             let mut cr = -mp * pr.a / h - dr / h;
             if up == r {
-                cr -= m * gw;
+                cr -= mg * gw;
             } else {
-                cl -= m * gw;
+                cl -= mg * gw;
+            }
+            let carried = (1.0 - 1.0 / t) * w0;
+            if carried < 0.0 {
+                cr += carried;
+            } else {
+                cl += carried;
             }
             // second-order settling at steady state: the implicit upwind value plus a
             // deferred MUSCL correction with the minmod limiter (zero at an interface with
@@ -79,7 +90,7 @@ impl Eulerian<'_> {
                 (self.s.phi[r], self.s.phi[l], if l > 0 { self.s.phi[l - 1] } else { self.s.phi[l] })
             };
             let correction = 0.5 * minmod(down - upv, upv - beyond);
-            let deferred = wb.map_or(-m * gw * correction, |w| w.1);
+            let deferred = wb.map_or(-mg * gw * correction, |w| w.1 / t);
             coeffs[3 * j] = cl;
             coeffs[3 * j + 1] = cr;
             coeffs[3 * j + 2] = -mp * (pr.b - pl.b) / h + deferred;
@@ -146,6 +157,31 @@ impl Eulerian<'_> {
         self.s.phi.copy_from_slice(&self.sc.work);
         self.sc.face_coeffs = coeffs;
         Ok(())
+    }
+
+    /// Newton linearisation of the wall-normal drag at interior face `j` whose mobility is
+    /// that of cell `up`: returns the tangent t of the drag in the wall-normal slip
+    /// (1 + d ln C / d ln Re (w_r / |slip|)^2, >= 1) and the old settling velocity w0 of the
+    /// face (the non-drift flux over its upwind phi, m/s).
+    ///
+    /// Why: the quasi-static wall-normal balance (Chassagne 2023 eqs 2.5-2.6) sets the
+    /// settling velocity w through K(|slip|) w = force, and K depends on w through the slip
+    /// (eq 2.10, the full slip u_f - u_p + u_d of eq 4.3). With K lagged (Picard), the step
+    /// solves w_(n+1) = force / K(w_n): for a quadratic drag w_(n+1) w_n = w_s^2, a period-2
+    /// oscillation that never damps whatever the time step (the map's slope is
+    /// -d ln K / d ln Re, -0.5 to -1 at the Re ~ 300 of 3 mm grains). The suspended grains of
+    /// the Revil-Baudard sheet flows held such a cycle (settling velocity alternating
+    /// between 0.08 and 0.11 m/s step by step, residual 2 /s). Newton's step,
+    /// w = w0 + (force / K(w0) - w0) / t, converges quadratically; as a flux it is the
+    /// Picard flux over t plus (1 - 1/t) w0 phi_upwind, implicit upwind in phi, so the
+    /// matrix stays an M-matrix. At steady state w = w0 and the flux is the Picard one: the
+    /// steady state (and the well-balanced bed, where w0 = 0) is unchanged.
+    fn settling_newton(&self, j: usize, up: usize) -> (f64, f64) {
+        let t = self.co.normal_tangent[up];
+        let settling = self.s.flux[j] - self.s.drift_flux[j];
+        let donor = if settling < 0.0 { self.s.phi[j] } else { self.s.phi[j - 1] };
+        let w0 = if donor > 0.0 && t > 1.0 { settling / donor } else { 0.0 };
+        (t, if w0.is_finite() { w0 } else { 0.0 })
     }
 
     /// Well-balanced volume-fraction flux of local rheologies at interior face `j`, from the
