@@ -60,7 +60,9 @@
 //!   (p_kin/phi) phi): the matrix is an M-matrix, so phi stays >= 0 and the mass is
 //!   conserved to round-off; the same mobility eps/K multiplies the weight and the pressure
 //!   gradient at a face, so the steady state is the discrete hydrostatic balance
-//!   dp_p/dz = -phi (rho_p - rho_f) g cos whatever the drag;
+//!   dp_p/dz = -phi (rho_p - rho_f) g cos whatever the drag; the drag's dependence on the
+//!   settling slip it sets is linearised by Newton's method (a lagged slip is a period-2
+//!   oscillation under a quadratic drag, see `volume_fraction`);
 //! * granular temperature: production explicit, conduction and both dissipations implicit,
 //!   so T >= 0 under any time step.
 //!
