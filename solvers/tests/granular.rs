@@ -474,3 +474,26 @@ fn a_homogeneous_gas_carries_no_heat_flux_at_rest_or_moving() {
     assert!((moving - rest).abs() < 0.02, "q_z / (rho_p phi T^1.5): {rest} at rest, {moving} moving");
     assert!(carried > 1.0, "the moving gas would carry {carried}: the test would not see a missing subtraction");
 }
+
+#[test]
+fn a_lid_drives_the_dem_column_and_needs_it() {
+    // Fry et al. 2024's Couette bedload with the DEM: the lid is the column's top (the
+    // Eulerian solver's boundary); check and run refuse it where the column is not solved
+    // or cannot take it, naming the key and the file
+    saltus_closures::link();
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/fry2024/couette_bedload.toml");
+    let load = |extra: &[&str]| {
+        let set: Vec<String> = ["solver.type=lagrangian"].iter().chain(extra).map(|s| s.to_string()).collect();
+        Scene::from_file_with(&file, &set)
+    };
+    let s = load(&[]).expect("loads");
+    let m = Lagrangian::new(&s, Config::from_scene(&s).expect("config")).expect("solver");
+    let top = m.column().expect("a coupled column").params().top;
+    assert_eq!(top, saltus_solvers::column::TopBoundary::Lid { velocity: 0.9929275 });
+    for (extra, why) in
+        [("solver.lagrangian.fluid=\"still\"", "coupled"), ("closures.turbulence={type=\"k_omega\"}", "turbulence")]
+    {
+        let e = load(&[extra]).expect_err(extra).to_string();
+        assert!(e.contains("domain.top") && e.contains("couette_bedload.toml") && e.contains(why), "{extra}: {e}");
+    }
+}
