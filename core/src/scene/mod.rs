@@ -355,18 +355,20 @@ impl Scene {
                             .into(),
                     ));
                 }
-                // a lid drives the DEM's fluid column (Fry et al. 2024's Couette bedload):
-                // it needs the column solved, and k-omega has no wall treatment there
-                if self.domain.top == Top::Lid {
-                    if self.solver.lagrangian.fluid != FluidMode::Coupled {
-                        return Err(key(
-                            "domain.top",
-                            "`lid` drives the fluid column: it needs solver.lagrangian.fluid = \"coupled\"".into(),
-                        ));
-                    }
-                    if self.closures.turbulence.as_ref().is_some_and(|t| !t.transported().is_empty()) {
-                        return Err(key("domain.top", "`lid` is not supported with a transported turbulence model (no wall treatment at a moving lid); use laminar or mixing_length".into()));
-                    }
+                // a lid (Fry et al. 2024's Couette bedload) or a symmetry plane bounds the
+                // DEM's fluid column: it needs the column solved, and k-omega has no wall
+                // treatment at a lid
+                if self.domain.top != Top::FreeSurface && self.solver.lagrangian.fluid != FluidMode::Coupled {
+                    return Err(key(
+                        "domain.top",
+                        "`lid` and `symmetry` bound the fluid column: they need solver.lagrangian.fluid = \"coupled\""
+                            .into(),
+                    ));
+                }
+                if self.domain.top == Top::Lid
+                    && self.closures.turbulence.as_ref().is_some_and(|t| !t.transported().is_empty())
+                {
+                    return Err(key("domain.top", "`lid` is not supported with a transported turbulence model (no wall treatment at a moving lid); use laminar or mixing_length".into()));
                 }
                 let unused = [
                     ("domain.lid_velocity", self.domain.top != Top::Lid && self.domain.lid_velocity != 0.0),
