@@ -49,7 +49,8 @@ pub fn compare(label: &str, model: &dyn LocalRheology, f: &RunFields, phi_min: f
         }
     }
     for (c, (i, j)) in [&mut c_mu, &mut c_phi].into_iter().zip(i_col.into_iter().zip(j_col)) {
-        c.extra = vec![("I", i), ("J", j)];
+        // the control number's own column is not repeated (mu(I) has I already)
+        c.extra = [("I", i), ("J", j)].into_iter().filter(|(name, _)| *name != control).collect();
     }
     Ok(vec![c_mu, c_phi])
 }

@@ -355,9 +355,23 @@ impl Scene {
                             .into(),
                     ));
                 }
+                // a lid (Fry et al. 2024's Couette bedload) or a symmetry plane bounds the
+                // DEM's fluid column: it needs the column solved, and k-omega has no wall
+                // treatment at a lid
+                if self.domain.top != Top::FreeSurface && self.solver.lagrangian.fluid != FluidMode::Coupled {
+                    return Err(key(
+                        "domain.top",
+                        "`lid` and `symmetry` bound the fluid column: they need solver.lagrangian.fluid = \"coupled\""
+                            .into(),
+                    ));
+                }
+                if self.domain.top == Top::Lid
+                    && self.closures.turbulence.as_ref().is_some_and(|t| !t.transported().is_empty())
+                {
+                    return Err(key("domain.top", "`lid` is not supported with a transported turbulence model (no wall treatment at a moving lid); use laminar or mixing_length".into()));
+                }
                 let unused = [
-                    ("domain.top", self.domain.top != Top::FreeSurface),
-                    ("domain.lid_velocity", self.domain.lid_velocity != 0.0),
+                    ("domain.lid_velocity", self.domain.top != Top::Lid && self.domain.lid_velocity != 0.0),
                     ("domain.stretching", self.domain.stretching != 1.0),
                     ("domain.suspension_phi", self.domain.suspension_phi != 0.0),
                 ];

@@ -171,7 +171,11 @@ impl<'a> Lagrangian<'a> {
                 diameter: d,
                 gravity_x: scene.physics.gravity * scene.physics.slope,
                 pressure_gradient: scene.physics.pressure_gradient,
-                top: TopBoundary::FreeSurface,
+                top: match scene.domain.top {
+                    saltus_core::scene::Top::Lid => TopBoundary::Lid { velocity: scene.domain.lid_velocity },
+                    saltus_core::scene::Top::Symmetry => TopBoundary::Symmetry,
+                    saltus_core::scene::Top::FreeSurface => TopBoundary::FreeSurface,
+                },
                 relaxation: 0.5,
                 particle_density: scene.particles.density,
                 gravity_normal: scene.physics.gravity * (1.0 - scene.physics.slope * scene.physics.slope).sqrt(),
