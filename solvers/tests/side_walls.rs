@@ -180,3 +180,28 @@ fn bad_width_is_refused() {
         assert!(matches!(err, ColumnError::InvalidParameter { name: "side-wall width", .. }), "{w}: {err}");
     }
 }
+
+/// The scene key: refused at load (so by `check` and `run` alike) without the walls or
+/// without a fluid column, naming the file and the key; on in the Frey scenes.
+#[test]
+fn scene_key_needs_walls_and_a_coupled_fluid() {
+    use saltus_core::scene::{Scene, SideWallFriction};
+    saltus_closures::link();
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/maurin2015/frey_sim6.toml");
+    let load = |sets: &[&str]| Scene::from_file_with(&file, &sets.iter().map(|s| s.to_string()).collect::<Vec<_>>());
+    let scene = load(&[]).expect("frey_sim6");
+    assert_eq!(scene.solver.lagrangian.side_wall_friction, SideWallFriction::GrafAltinakar);
+    for (sets, allowed) in [
+        (&["solver.lagrangian.side_walls=false", "solver.lagrangian.width=0.12"][..], "side_walls = true"),
+        (&["solver.lagrangian.fluid=\"still\""][..], "fluid = \"coupled\""),
+        (&["solver.lagrangian.side_wall_friction=\"smooth\""][..], "graf_altinakar"),
+    ] {
+        let err = load(sets).expect_err("refused").to_string();
+        assert!(
+            err.contains("frey_sim6.toml")
+                && err.contains("solver.lagrangian.side_wall_friction")
+                && err.contains(allowed),
+            "{sets:?}: {err}"
+        );
+    }
+}

@@ -223,10 +223,9 @@ impl FluidColumn {
     }
 
     /// Relative residual of the discrete steady equation for the current velocity and the
-    /// stored nu_t: max_i |tau_{i+1/2} - tau_{i-1/2} + (S_i - beta_i (u_i - u_p,i) -
-    /// gamma_w,i u_i) dz_i| divided by |tau_wall| + |tau_top| + sum_i (|S_i| + |beta_i (u_i
-    /// - u_p,i) + gamma_w,i u_i|) dz_i
-    /// (0 when every term vanishes). After a transient step it measures the remaining
+    /// stored nu_t: max_i |tau_{i+1/2} - tau_{i-1/2} + (S_i - D_i) dz_i| divided by
+    /// |tau_wall| + |tau_top| + sum_i (|S_i| + |D_i|) dz_i, with the drag and side-wall
+    /// friction D_i = beta_i (u_i - u_p,i) + gamma_w,i u_i (0 when every term vanishes). After a transient step it measures the remaining
     /// unsteadiness.
     pub fn residual(&self) -> f64 {
         self.residual
