@@ -43,6 +43,10 @@ pub struct FluidColumn {
     u_p: Vec<f64>,
     /// driving per unit volume eps (rho_f g sin(alpha) + G_x) per cell (Pa/m)
     source: Vec<f64>,
+    /// side-wall friction coefficient gamma_w per cell (kg m^-3 s^-1), lagged like nu_t;
+    /// empty without side walls (a checkpoint of a column without them has none)
+    #[serde(default)]
+    wall: Vec<f64>,
     tri: Tridiagonal,
     /// k and omega of a two-equation closure, allocated on the first step with one
     kw: Option<KOmegaRun>,
@@ -78,6 +82,7 @@ impl FluidColumn {
             beta: vec![0.0; n],
             u_p: vec![0.0; n],
             source: vec![0.0; n],
+            wall: if params.side_walls.is_some() { vec![0.0; n] } else { Vec::new() },
             tri: Tridiagonal::new(n),
             kw: None,
             fresh: true,
@@ -202,10 +207,25 @@ impl FluidColumn {
         &self.source
     }
 
+    /// Side-wall friction coefficient gamma_w per cell (kg m^-3 s^-1) of the last step (the
+    /// walls remove gamma_w u_f per unit volume; [`super::side_walls`]); empty without
+    /// side walls.
+    pub fn side_wall_coefficients(&self) -> &[f64] {
+        &self.wall
+    }
+
+    /// Friction of the two side walls on the fluid per unit bed area, sum_i gamma_w,i u_i
+    /// dz_i (Pa): at steady state the driving equals the bed shear stress, the drag on the
+    /// particles and this. 0 without side walls.
+    pub fn side_wall_stress(&self) -> f64 {
+        let dz = self.op.grid().dz();
+        self.wall.iter().zip(&self.u).zip(dz).map(|((g, u), dz)| g * u * dz).sum()
+    }
+
     /// Relative residual of the discrete steady equation for the current velocity and the
-    /// stored nu_t: max_i |tau_{i+1/2} - tau_{i-1/2} + (S_i - beta_i (u_i - u_p,i)) dz_i|
-    /// divided by |tau_wall| + |tau_top| + sum_i (|S_i| + |beta_i (u_i - u_p,i)|) dz_i
-    /// (0 when every term vanishes). After a transient step it measures the remaining
+    /// stored nu_t: max_i |tau_{i+1/2} - tau_{i-1/2} + (S_i - D_i) dz_i| divided by
+    /// |tau_wall| + |tau_top| + sum_i (|S_i| + |D_i|) dz_i, with the drag and side-wall
+    /// friction D_i = beta_i (u_i - u_p,i) + gamma_w,i u_i (0 when every term vanishes). After a transient step it measures the remaining
     /// unsteadiness.
     pub fn residual(&self) -> f64 {
         self.residual
@@ -222,6 +242,7 @@ impl FluidColumn {
         }
         self.load_inputs(coupling, closures)?;
         self.evaluate_turbulence(closures.turbulence)?;
+        self.update_side_walls();
         // the one relaxation policy of the column (also the Eulerian solver's)
         self.eddy.relax(self.fresh);
         self.fresh = false;
@@ -261,6 +282,7 @@ impl FluidColumn {
         let mut it = 0;
         loop {
             self.evaluate_turbulence(closures.turbulence)?;
+            self.update_side_walls();
             // nu_t <- nu_t(u), keeping the previous one
             self.eddy.take_candidate();
             self.update_coefficients();
@@ -296,6 +318,7 @@ impl FluidColumn {
         let mut it = 0;
         loop {
             self.evaluate_turbulence(turbulence)?;
+            self.update_side_walls();
             self.eddy.take_candidate();
             self.update_coefficients();
             self.update_stresses();
@@ -433,6 +456,16 @@ impl FluidColumn {
         Ok(())
     }
 
+    /// gamma_w of the side walls from the current velocity and phi (nothing without walls).
+    fn update_side_walls(&mut self) {
+        let Some(walls) = self.params.side_walls else { return };
+        let n = self.u.len();
+        if self.wall.len() != n {
+            self.wall.resize(n, 0.0);
+        }
+        walls.coefficients(self.params.density, self.params.viscosity, &self.phi, &self.u, &mut self.wall);
+    }
+
     /// Candidate nu_t from the current shear rate.
     fn evaluate_turbulence(&mut self, turbulence: &dyn Turbulence) -> Result<(), ColumnError> {
         let kw_fields = self.kw.as_ref().map(|kw| kw.col.fields());
@@ -473,6 +506,10 @@ impl FluidColumn {
             t.upper[i] = 0.0;
             t.diag[i] = tm + b;
             t.rhs[i] = tm * self.u[i] + self.source[i] * dzi + b * self.u_p[i];
+        }
+        // the side walls: a drag towards u = 0
+        for ((d, &g), &dzi) in t.diag.iter_mut().zip(&self.wall).zip(dz) {
+            *d += g * dzi;
         }
         self.op.add_diffusion(&self.cond, t);
         // bottom no-slip wall (u_w = 0): flux rho k_0 du/dz
@@ -530,7 +567,10 @@ impl FluidColumn {
         let mut worst: f64 = 0.0;
         let mut scale = self.stress[0].abs() + self.stress[n].abs();
         for i in 0..n {
-            let drag = self.beta[i] * (u[i] - self.u_p[i]) * dz[i];
+            let mut drag = self.beta[i] * (u[i] - self.u_p[i]) * dz[i];
+            if let Some(g) = self.wall.get(i) {
+                drag += g * u[i] * dz[i];
+            }
             let s = self.source[i] * dz[i];
             let r = self.stress[i + 1] - self.stress[i] + s - drag;
             worst = worst.max(r.abs());

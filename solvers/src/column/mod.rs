@@ -16,14 +16,18 @@
 //!
 //! ```text
 //! eps rho_f du/dt = d/dz[ rho_f eps (nu_eff(phi) + nu_t) du/dz ]
-//!                   + eps rho_f g sin(alpha) + eps G_x - beta (u - u_p)
+//!                   + eps rho_f g sin(alpha) + eps G_x - beta (u - u_p) - gamma_w u
 //! ```
 //!
 //! with eps = 1 - phi, nu_eff = nu_f ratio(phi) ([`saltus_core::EffectiveViscosity`]),
 //! nu_t = l_m^2 |du/dz| from [`saltus_core::Turbulence::eddy_viscosity`] (Chassagne eq
 //! 2.8) or nu_t = alpha* k / omega of a two-equation closure (Cheng et al. eq 29, k and
 //! omega advanced by [`k_omega::KOmegaColumn`] after each momentum step), G_x = -dp/dx (Pa/m) and beta (kg m^-3 s^-1) the implicit drag coefficient with
-//! the particle velocity u_p, both per cell from the caller ([`Coupling`]).
+//! the particle velocity u_p, both per cell from the caller ([`Coupling`]). gamma_w u is
+//! the friction of two smooth side walls of a quasi-2D channel (Maurin et al. 2015
+//! section III B, [`side_walls`]; [`ColumnParams::side_walls`], absent by default):
+//! gamma_w = eps rho_f f_w |u| / (4 W) with the smooth-wall friction factor f_w, lagged
+//! like nu_t and implicit in u like the drag.
 //!
 //! eps factors: eps multiplies both nu_eff and nu_t, once, as in Chassagne eq 2.7. Maurin
 //! eq 19 writes eps nu_e + nu_t with nu_t = eps l_m^2 |du/dz| (its eq 4): the same
@@ -89,6 +93,7 @@ mod grid;
 pub mod k_omega;
 pub mod operator;
 mod params;
+pub mod side_walls;
 pub mod tridiagonal;
 pub mod turbulence;
 
@@ -96,6 +101,7 @@ pub use fluid::FluidColumn;
 pub use grid::Grid;
 pub use operator::{Band, ColumnOperator};
 pub use params::{Closures, ColumnParams, Coupling, SteadyReport, TopBoundary};
+pub use side_walls::SideWalls;
 pub use tridiagonal::Tridiagonal;
 
 /// Errors of the column solver.

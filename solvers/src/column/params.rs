@@ -2,6 +2,7 @@
 
 use saltus_core::{EffectiveViscosity, Turbulence};
 
+use super::side_walls::SideWalls;
 use super::ColumnError;
 
 /// Boundary condition at the top of the column (z = H).
@@ -49,6 +50,10 @@ pub struct ColumnParams {
     /// fully turbulent mixing-length layer (nu_t <- C / nu_t, which oscillates with
     /// omega = 1) into a Newton (Babylonian) iteration.
     pub relaxation: f64,
+    /// friction of two smooth lateral walls on the fluid (quasi-2D channel, Maurin et al.
+    /// 2015 section III B; [`super::side_walls`]); `None`: no walls
+    #[serde(default)]
+    pub side_walls: Option<SideWalls>,
 }
 
 impl Default for ColumnParams {
@@ -65,6 +70,7 @@ impl Default for ColumnParams {
             gravity_normal: 9.81,
             friction_velocity: None,
             relaxation: 0.5,
+            side_walls: None,
         }
     }
 }
@@ -148,6 +154,9 @@ impl ColumnParams {
                     reason: "must be finite",
                 });
             }
+        }
+        if let Some(w) = p.side_walls {
+            positive("side-wall width", w.width)?;
         }
         if !(p.relaxation > 0.0 && p.relaxation <= 1.0) {
             return Err(ColumnError::InvalidParameter {

@@ -185,6 +185,8 @@ impl<'a> Lagrangian<'a> {
                     scene.physics.gravity * scene.physics.slope + scene.physics.pressure_gradient / scene.fluid.density,
                     cfg.domain.water_depth,
                 )),
+                side_walls: (!s.numerics.side_wall_friction.is_none())
+                    .then_some(crate::column::SideWalls { width: cfg.domain.width }),
             };
             column_params = Some(params);
             Some(FluidColumn::new(grid, params)?)
