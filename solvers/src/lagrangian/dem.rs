@@ -271,7 +271,8 @@ impl Dem {
             dt: self.dt,
         };
         let (li, lj) = (&l.i, &l.j);
-        let write = |q: usize, h: &mut [f64; 3], f_out: &mut [f64; 3], t_out: &mut [f64; 3]| view.write(q, h, f_out, t_out);
+        let write =
+            |q: usize, h: &mut [f64; 3], f_out: &mut [f64; 3], t_out: &mut [f64; 3]| view.write(q, h, f_out, t_out);
         if !sampled {
             // each pair owns its history and its output slots: chunks of the three arrays
             // zipped, pair q = chunk start + k
