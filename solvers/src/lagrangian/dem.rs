@@ -473,7 +473,7 @@ impl Dem {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lagrangian::neighbours::MAX_SKIN_DIAMETERS;
+    use crate::lagrangian::neighbours::{pairs_within, MAX_SKIN_DIAMETERS};
 
     #[test]
     fn with_the_adapted_skin_every_contact_gets_its_force() {
@@ -505,18 +505,9 @@ mod tests {
                 continue;
             }
             let (p, list) = (&dem.p, &dem.list);
-            for a in 0..p.len() {
-                for b in a + 1..p.len() {
-                    let mut d = [p.x[b] - p.x[a], p.y[b] - p.y[a], p.z[b] - p.z[a]];
-                    for (k, c) in d.iter_mut().enumerate() {
-                        *c += bx.image_shift(k, *c);
-                    }
-                    if d.iter().map(|c| c * c).sum::<f64>() >= 4.0 * r * r {
-                        continue;
-                    }
-                    let listed = (list.start[a]..list.start[a + 1]).any(|q| list.j[q] as usize == b);
-                    assert!(listed, "step {step}: pair ({a}, {b}) in contact is not listed");
-                }
+            for (a, b) in pairs_within(p, &bx, 0.0) {
+                let listed = (list.start[a]..list.start[a + 1]).any(|q| list.j[q] as usize == b);
+                assert!(listed, "step {step}: pair ({a}, {b}) in contact is not listed");
             }
         }
         assert!(dem.list.builds > 10, "{} builds", dem.list.builds);

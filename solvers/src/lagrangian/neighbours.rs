@@ -372,6 +372,27 @@ impl NeighbourList {
     }
 }
 
+/// Every pair (a < b) of `p` whose surfaces are closer than `gap` (0: in contact), by
+/// brute force over all pairs and their minimum images: what a list must hold.
+#[cfg(test)]
+pub(crate) fn pairs_within(p: &Particles, bx: &Box3, gap: f64) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    for a in 0..p.len() {
+        for b in a + 1..p.len() {
+            let mut d2 = 0.0;
+            for (k, c) in [&p.x, &p.y, &p.z].into_iter().enumerate() {
+                let d = c[b] - c[a];
+                let d = d + bx.image_shift(k, d);
+                d2 += d * d;
+            }
+            if d2 < (p.radius[a] + p.radius[b] + gap).powi(2) {
+                out.push((a, b));
+            }
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -393,20 +414,8 @@ mod tests {
             }
             let mut list = NeighbourList::new(skin);
             list.build(&mut p, &bx);
-            let mut expected = Vec::new();
-            for a in 0..p.len() {
-                for b in a + 1..p.len() {
-                    let mut d2 = 0.0;
-                    for (k, c) in [&p.x, &p.y, &p.z].into_iter().enumerate() {
-                        let d = c[b] - c[a];
-                        let d = d + bx.image_shift(k, d);
-                        d2 += d * d;
-                    }
-                    if d2 < (2.0 * r + skin) * (2.0 * r + skin) {
-                        expected.push((a as u32, b as u32));
-                    }
-                }
-            }
+            let expected: Vec<(u32, u32)> =
+                pairs_within(&p, &bx, skin).into_iter().map(|(a, b)| (a as u32, b as u32)).collect();
             let mut got: Vec<(u32, u32)> = list.i.iter().zip(&list.j).map(|(a, b)| (*a, *b)).collect();
             got.sort_unstable();
             prop_assert_eq!(got, expected);
@@ -420,25 +429,6 @@ mod tests {
             }
             prop_assert!(seen.iter().all(|&c| c == 1));
         }
-    }
-
-    /// Every pair of `p` in contact now, by brute force over all pairs and images.
-    fn touching(p: &Particles, bx: &Box3) -> Vec<(usize, usize)> {
-        let mut out = Vec::new();
-        for a in 0..p.len() {
-            for b in a + 1..p.len() {
-                let mut d2 = 0.0;
-                for (k, c) in [&p.x, &p.y, &p.z].into_iter().enumerate() {
-                    let d = c[b] - c[a];
-                    let d = d + bx.image_shift(k, d);
-                    d2 += d * d;
-                }
-                if d2 < (p.radius[a] + p.radius[b]).powi(2) {
-                    out.push((a, b));
-                }
-            }
-        }
-        out
     }
 
     proptest! {
@@ -475,7 +465,7 @@ mod tests {
                 }
                 grew |= list.skin > 2.0 * list.skin_min;
                 prop_assert!(list.skin >= list.skin_min && list.skin <= MAX_SKIN_DIAMETERS * 2.0 * r);
-                for (a, b) in touching(&p, &bx) {
+                for (a, b) in pairs_within(&p, &bx, 0.0) {
                     let row = list.start[a]..list.start[a + 1];
                     let q = row.clone().find(|&q| list.j[q] as usize == b);
                     prop_assert!(q.is_some(), "step {step}: pair ({a}, {b}) in contact is not listed");
