@@ -1,6 +1,9 @@
 //! One coupled DEM step (drag, contacts, integration; the fluid column solved every fluid
 //! period, amortised) on the bed of Chassagne et al. 2023 case 1 in a 20 d x 20 d cell:
 //! 5730 mobile and 455 fixed spheres of 6 mm, 945 fluid cells. On one and two threads.
+//! Group `dem_peer_step`: the peer DEM code's bedload example
+//! (`cases/maurin2015/peer_bedload_1165.toml`, 1165 mobile spheres) at the peer's time
+//! step, 0.22 contact times, and at the default 0.05, after 2 s of flow.
 //! `cargo bench --bench dem_step`
 
 use std::path::Path;
@@ -43,5 +46,31 @@ fn coupled_step(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, coupled_step);
+fn peer_step(c: &mut Criterion) {
+    saltus_closures::link();
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/maurin2015/peer_bedload_1165.toml");
+    let mut group = c.benchmark_group("dem_peer_step");
+    group.sample_size(20);
+    for dt_safety in ["0.22", "0.05"] {
+        let sets = [format!("solver.lagrangian.dt_safety={dt_safety}"), "solver.lagrangian.end_time=1e9".into()];
+        let scene = Scene::from_file_with(&file, &sets).expect("the peer's case");
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("pool");
+        let mut m = Lagrangian::new(&scene, Config::from_scene(&scene).expect("config")).expect("solver");
+        pool.install(|| {
+            m.deposit().expect("deposition");
+            // the flow accelerates from rest: after 2 s the grains saltate (qs* about 0.03,
+            // the neighbour list rebuilt every few steps at 0.22)
+            while m.time() < 2.0 {
+                assert!(m.step().is_none());
+            }
+        });
+        group.throughput(Throughput::Elements(m.mobile() as u64));
+        group.bench_function(format!("dt_safety_{dt_safety}_1_thread"), |b| {
+            b.iter(|| pool.install(|| m.step_dem().expect("step")))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, coupled_step, peer_step);
 criterion_main!(benches);

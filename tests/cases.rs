@@ -117,6 +117,7 @@ fn the_case_tree_holds_the_expected_scenes() {
         "verification/dem_sliding_sphere.toml",
         "verification/dem_settling.toml",
         "verification/dem_homogeneous_cooling.toml",
+        "maurin2015/peer_bedload_1165.toml",
     ] {
         assert!(names.contains(&name.to_string()), "missing {name}");
     }
@@ -249,4 +250,34 @@ fn chassagne2023_scenes_match_table_2() {
         // only case 1 has reference data (the DEM profile in shared/data)
         assert_eq!(!scene.reference.is_empty(), id == 1, "{where_}: [reference] only for case 1");
     }
+}
+
+#[test]
+fn the_peer_bedload_scene_has_the_numbers_of_the_peer_script() {
+    // the peer's example script derives its numbers from a few inputs (d = 6 mm, rho_p =
+    // 2500, phi_max = 0.61, 10 layers, a 10 d x 10 d cell, a channel angle of 0.05 rad,
+    // 17.5 d of water); the scene must give the same
+    let path = cases_dir().join("maurin2015/peer_bedload_1165.toml");
+    let scene = load(&path);
+    let l = &scene.solver.lagrangian;
+    let (d, rho_p, rho_f, g) = (6e-3, 2500.0, 1000.0, 9.81);
+    let (phi_max, layers, angle) = (0.61, 10.0, 0.05f64);
+    assert!(close(scene.particles.diameter, d, 1e-12) && close(scene.particles.density, rho_p, 1e-12));
+    assert!(close(scene.fluid.density, rho_f, 1e-12) && close(scene.physics.gravity, g, 1e-12));
+    assert!((scene.physics.slope - angle.sin()).abs() < 1e-15, "slope {}", scene.physics.slope);
+    // int(N_layer phi_max L W / (pi d^3 / 6)) mobile spheres
+    let count = (layers * phi_max * 10.0 * 10.0 / (std::f64::consts::PI / 6.0)) as usize;
+    assert_eq!(l.particles, Some(count));
+    assert_eq!(count, 1165);
+    assert!(close(l.length.unwrap_or(0.0), 10.0 * d, 1e-12) && close(l.width.unwrap_or(0.0), 10.0 * d, 1e-12));
+    assert!(close(scene.domain.bed_height, layers * d, 1e-12) && close(scene.domain.water_depth, 17.5 * d, 1e-12));
+    // k_n = (rho_p - rho_f) phi_max N_layer d g cos(angle) d 1e4, printed to 4 digits
+    let kn = (rho_p - rho_f) * phi_max * layers * d * g * angle.cos() * d * 1e4;
+    let stiffness = scene.particles.contact.stiffness.unwrap_or(0.0);
+    assert!((stiffness / kn - 1.0).abs() < 2e-4, "k_n {stiffness} against {kn}");
+    assert!(close(scene.particles.contact.tangential_ratio, 0.5, 1e-12));
+    assert!(close(scene.particles.restitution, 0.7, 1e-12) && close(scene.particles.friction, 0.5, 1e-12));
+    assert!(close(l.fluid_period, 1e-2, 1e-12) && close(l.end_time, 15.0, 1e-12) && close(l.stats_start, 7.0, 1e-12));
+    // fluid cells of d/30 over the bed and the water
+    assert_eq!(l.cells, Some(((layers + 17.5) * 30.0) as usize));
 }

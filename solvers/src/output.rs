@@ -152,6 +152,10 @@ pub struct Summary {
     /// the initial bed height and h the water depth of the scene; absent where undefined
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rouse_number: Option<f64>,
+    /// DEM runs: neighbour-list builds of the whole run, the deposition's included (per
+    /// step: over `total_steps`)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub neighbour_builds: Option<usize>,
 }
 
 /// `manifest.json`: enough to reproduce the run.

@@ -165,7 +165,8 @@ pub struct LagrangianSettings {
     /// time step over the contact time pi sqrt(m / (2 k_n)) (linear) or the Rayleigh time
     /// (Hertz)
     pub dt_safety: f64,
-    /// Verlet skin over d
+    /// smallest Verlet skin over d: the neighbour list widens it (up to one diameter) so
+    /// that it lasts about 25 steps (`saltus_solvers::lagrangian::neighbours`)
     pub skin: f64,
     /// fluid coupling
     pub fluid: FluidMode,

@@ -11,6 +11,23 @@
 //!
 //! A rebuild reuses the buffers of the previous list (they only grow), and carries the
 //! tangential history of the pairs that survive.
+//!
+//! # The skin follows the motion
+//!
+//! A skin fixed in diameters is rebuilt every few steps at the large time steps users
+//! run (in the peer's bedload case, `cases/maurin2015/peer_bedload_1165.toml`, a grain
+//! at 1 m/s crosses half of 0.1 d in 7 steps of 0.22 contact times), and a skin wide
+//! enough for the fastest grains lists several times the pairs of a bed at rest. So the skin adapts at every rebuild caused by motion: with n steps
+//! since the previous build, the skin is multiplied by sqrt(N / n) (N =
+//! [`TARGET_STEPS`]; the factor kept within [1/2, 2], the geometric mean of the old
+//! skin and the one that would have lasted N steps at the same speed), and kept between
+//! the scene's `skin` (the smallest) and [`MAX_SKIN_DIAMETERS`] diameters (less in a box
+//! so small that a larger skin would meet two images of a particle). The criterion
+//! itself does not change: a rebuild as soon as any mobile particle moved more than half
+//! the current skin, so no contact is ever missed whatever the skin, and the policy
+//! only trades pairs against rebuilds. It depends on step counts only, never on timings,
+//! so a run stays the same for a seed on any number of threads, and it is saved with the
+//! list in a checkpoint.
 
 use super::particles::{Box3, Particles};
 
@@ -37,10 +54,14 @@ pub struct NeighbourList {
     pub rev: Vec<u32>,
     /// positions at the last build
     pub x0: Vec<[f64; 3]>,
-    /// surface distance below which pairs are listed (m)
+    /// surface distance below which pairs are listed (m), adapted at each rebuild
     pub skin: f64,
+    /// the smallest skin (m): the scene's `skin`
+    pub skin_min: f64,
     /// number of builds
     pub builds: usize,
+    /// steps since the last build ([`NeighbourList::tick`])
+    pub steps_since: u64,
     // work buffers, refilled by every build: not part of a checkpoint
     #[serde(skip)]
     old_i_start: Vec<usize>,
@@ -57,6 +78,14 @@ pub struct NeighbourList {
     #[serde(skip)]
     fill: Vec<usize>,
 }
+
+/// Steps between rebuilds the skin is adapted to. On the peer's bedload case at 0.22
+/// contact times per step, 15, 25 and 40 steps cost about the same CPU per step, 25 the
+/// least (a skin of 0.33 d there, 1.5 times the pairs of 0.1 d); docs/benchmarks.md,
+/// "Speed at large time steps".
+pub const TARGET_STEPS: f64 = 25.0;
+/// Largest adapted skin, in diameters of the largest particle.
+pub const MAX_SKIN_DIAMETERS: f64 = 1.0;
 
 /// Most cells of the neighbour grid per particle (see [`NeighbourList::build`]).
 pub const MAX_CELLS_PER_PARTICLE: usize = 8;
@@ -75,11 +104,12 @@ struct Axis {
 impl Axis {
     #[inline]
     fn index(&self, v: f64) -> usize {
-        let k = ((v - self.lo) / self.size).floor();
-        if k < 0.0 {
-            0
-        } else {
+        // truncation is the floor of the positive values: no libm call per particle
+        let k = (v - self.lo) / self.size;
+        if k > 0.0 {
             (k as usize).min(self.n - 1)
+        } else {
+            0
         }
     }
     /// distinct neighbour offsets, so that a short periodic axis is not visited twice
@@ -106,9 +136,23 @@ impl Axis {
 }
 
 impl NeighbourList {
-    /// An empty list with surface-distance skin `skin` (m).
+    /// An empty list with surface-distance skin `skin` (m), the smallest the list adapts
+    /// to.
     pub fn new(skin: f64) -> Self {
-        Self { skin, ..Default::default() }
+        Self { skin, skin_min: skin, ..Default::default() }
+    }
+
+    /// Count one step of the particles since the last build.
+    #[inline]
+    pub fn tick(&mut self) {
+        self.steps_since += 1;
+    }
+
+    /// The skin for the next build after `n` steps on the current one (see the module
+    /// documentation), between the smallest skin and `largest`.
+    pub fn adapted_skin(&self, n: u64, largest: f64) -> f64 {
+        let factor = (TARGET_STEPS / n.max(1) as f64).sqrt().clamp(0.5, 2.0);
+        (self.skin * factor).min(largest).max(self.skin_min)
     }
 
     /// Number of pairs.
@@ -143,6 +187,16 @@ impl NeighbourList {
     /// surviving pairs.
     pub fn build(&mut self, p: &mut Particles, bx: &Box3) {
         let n = p.len();
+        let rmax = p.radius.iter().fold(0.0f64, |a, &r| a.max(r));
+        // a rebuild caused by motion (not the first build, nor one after a change of
+        // the particles) adapts the skin; the minimum image bounds it: the list must not
+        // hold two images of a pair, so the cut-off stays below half the shortest period
+        if self.x0.len() == n && self.steps_since > 0 {
+            let period = (0..3).filter(|&k| bx.periodic[k]).map(|k| bx.length[k]).fold(f64::INFINITY, f64::min);
+            let largest = (MAX_SKIN_DIAMETERS * 2.0 * rmax).min(0.99 * (0.5 * period - 2.0 * rmax));
+            self.skin = self.adapted_skin(self.steps_since, largest);
+        }
+        self.steps_since = 0;
         for (axis, v) in [&mut p.x, &mut p.y, &mut p.z].into_iter().enumerate() {
             if bx.periodic[axis] {
                 let l = bx.length[axis];
@@ -160,7 +214,6 @@ impl NeighbourList {
         std::mem::swap(&mut self.start, &mut self.old_i_start);
         let had_old = self.old_i_start.len() == n + 1;
 
-        let rmax = p.radius.iter().fold(0.0f64, |a, &r| a.max(r));
         let cut = 2.0 * rmax + self.skin;
         let mut axes = [Axis { lo: 0.0, size: 1.0, n: 1, periodic: false }; 3];
         for (axis, v) in [&p.x, &p.y, &p.z].into_iter().enumerate() {
@@ -233,6 +286,14 @@ impl NeighbourList {
         self.hist.clear();
         self.start.clear();
         self.start.push(0);
+        // the minimum image of a difference of wrapped coordinates, |d| < L, by
+        // comparison (the same shift as Box3::image_shift without its libm round)
+        let (mut half, mut period) = ([f64::INFINITY; 3], [0.0; 3]);
+        for k in 0..3 {
+            if bx.periodic[k] {
+                (half[k], period[k]) = (0.5 * bx.length[k], bx.length[k]);
+            }
+        }
         for a in 0..n {
             let (xa, ya, za, ra) = (p.x[a], p.y[a], p.z[a], p.radius[a]);
             let fixed_a = p.inv_mass[a] == 0.0;
@@ -255,7 +316,13 @@ impl NeighbourList {
                             let mut d = [p.x[b] - xa, p.y[b] - ya, p.z[b] - za];
                             let mut s = [0.0; 3];
                             for k in 0..3 {
-                                s[k] = bx.image_shift(k, d[k]);
+                                s[k] = if d[k] > half[k] {
+                                    -period[k]
+                                } else if d[k] < -half[k] {
+                                    period[k]
+                                } else {
+                                    0.0
+                                };
                                 d[k] += s[k];
                             }
                             let reach = ra + p.radius[b] + self.skin;
@@ -305,6 +372,27 @@ impl NeighbourList {
     }
 }
 
+/// Every pair (a < b) of `p` whose surfaces are closer than `gap` (0: in contact), by
+/// brute force over all pairs and their minimum images: what a list must hold.
+#[cfg(test)]
+pub(crate) fn pairs_within(p: &Particles, bx: &Box3, gap: f64) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    for a in 0..p.len() {
+        for b in a + 1..p.len() {
+            let mut d2 = 0.0;
+            for (k, c) in [&p.x, &p.y, &p.z].into_iter().enumerate() {
+                let d = c[b] - c[a];
+                let d = d + bx.image_shift(k, d);
+                d2 += d * d;
+            }
+            if d2 < (p.radius[a] + p.radius[b] + gap).powi(2) {
+                out.push((a, b));
+            }
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -326,20 +414,8 @@ mod tests {
             }
             let mut list = NeighbourList::new(skin);
             list.build(&mut p, &bx);
-            let mut expected = Vec::new();
-            for a in 0..p.len() {
-                for b in a + 1..p.len() {
-                    let mut d2 = 0.0;
-                    for (k, c) in [&p.x, &p.y, &p.z].into_iter().enumerate() {
-                        let d = c[b] - c[a];
-                        let d = d + bx.image_shift(k, d);
-                        d2 += d * d;
-                    }
-                    if d2 < (2.0 * r + skin) * (2.0 * r + skin) {
-                        expected.push((a as u32, b as u32));
-                    }
-                }
-            }
+            let expected: Vec<(u32, u32)> =
+                pairs_within(&p, &bx, skin).into_iter().map(|(a, b)| (a as u32, b as u32)).collect();
             let mut got: Vec<(u32, u32)> = list.i.iter().zip(&list.j).map(|(a, b)| (*a, *b)).collect();
             got.sort_unstable();
             prop_assert_eq!(got, expected);
@@ -353,6 +429,70 @@ mod tests {
             }
             prop_assert!(seen.iter().all(|&c| c == 1));
         }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+        #[test]
+        fn an_adapted_skin_misses_no_contact(
+            pts in proptest::collection::vec((0.0f64..1.0, 0.0f64..1.0, 0.0f64..0.6, -1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), 40..150),
+            kick in 0usize..40,
+        ) {
+            // grains moving at up to 2 m/s, one of them kicked to 20 m/s after `kick`
+            // steps: the skin grows from 1 % of d and must shrink again; after every step
+            // the list the next step would use holds every pair in contact
+            let (l, r, dt) = (1.0, 0.04, 1e-4);
+            let bx = Box3 { length: [l, l, 0.0], periodic: [true, true, false] };
+            let mut p = Particles::default();
+            for &(x, y, z, vx, vy, vz) in &pts {
+                p.push([x, y, z], [2.0 * vx, 2.0 * vy, 2.0 * vz], [0.0; 3], r, 1000.0, false);
+            }
+            let mut list = NeighbourList::new(0.02 * r);
+            list.build(&mut p, &bx);
+            let mut grew = false;
+            for step in 0..120 {
+                if step == kick {
+                    p.vx[0] = 20.0;
+                }
+                for a in 0..p.len() {
+                    p.x[a] += p.vx[a] * dt;
+                    p.y[a] += p.vy[a] * dt;
+                    p.z[a] += p.vz[a] * dt;
+                }
+                list.tick();
+                if list.needs_rebuild(&p) {
+                    list.build(&mut p, &bx);
+                }
+                grew |= list.skin > 2.0 * list.skin_min;
+                prop_assert!(list.skin >= list.skin_min && list.skin <= MAX_SKIN_DIAMETERS * 2.0 * r);
+                for (a, b) in pairs_within(&p, &bx, 0.0) {
+                    let row = list.start[a]..list.start[a + 1];
+                    let q = row.clone().find(|&q| list.j[q] as usize == b);
+                    prop_assert!(q.is_some(), "step {step}: pair ({a}, {b}) in contact is not listed");
+                    // and with the image the list froze
+                    let (q, s) = (q.unwrap_or(0), list.shift[q.unwrap_or(0)]);
+                    let d = [p.x[b] + s[0] - p.x[a], p.y[b] + s[1] - p.y[a], p.z[b] + s[2] - p.z[a]];
+                    prop_assert!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < 4.0 * r * r, "pair {q}");
+                }
+            }
+            prop_assert!(grew, "the skin never adapted");
+        }
+    }
+
+    #[test]
+    fn the_skin_follows_the_steps_between_builds() {
+        let mut list = NeighbourList::new(1e-4);
+        list.skin = 4e-4;
+        // built too often: wider, by at most a factor 2 and to at most the bound
+        assert_eq!(list.adapted_skin(1, 1.0), 8e-4);
+        assert!((list.adapted_skin(10, 1.0) / 4e-4 - (TARGET_STEPS / 10.0).sqrt()).abs() < 1e-12);
+        assert_eq!(list.adapted_skin(1, 5e-4), 5e-4);
+        // at the target: kept; too seldom: narrower, by at most a factor 2, never below
+        // the smallest
+        assert_eq!(list.adapted_skin(TARGET_STEPS as u64, 1.0), 4e-4);
+        assert_eq!(list.adapted_skin(10_000, 1.0), 2e-4);
+        list.skin = 1.5e-4;
+        assert_eq!(list.adapted_skin(10_000, 1.0), 1e-4);
     }
 
     #[test]

@@ -109,6 +109,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         haff_granular_temperature: haff.and_then(|h| cooling.haff_at(h, m.time())).and_then(finite),
         haff_max_deviation: haff.and_then(|_| finite(cooling.max_deviation)),
         rouse_number: rouse,
+        neighbour_builds: Some(m.dem().list().builds),
     };
     let measured = match (summary.qs_star, summary.shields) {
         (None, _) | (_, None) if samples > 0 => format!(
