@@ -237,14 +237,16 @@ fn a_dry_layer_flowing_down_an_incline_balances_its_weight() {
     // on a rough bottom, 6 d of grains; dry, so p_p = int rho_p g cos(alpha) phi dz and
     // tau_p = int rho_p g sin(alpha) phi dz. A sample every 0.24 ms: the contact stress of
     // a collisional flow is noisy (one every 10 ms, the default, left 15 % after 1 s).
-    // Measured: 1.9 % (p_p), 2.7 % (tau_p) at worst, in the top slice with phi > 0.1
+    // 3 s of averaging: over 1 s the top slice with phi > 0.1 scattered by 2.7-5.2 % on
+    // tau_p between realisations (seeds, skin policies); over 3 s, measured 1.4 % (p_p)
+    // and 2.2 % (tau_p) at worst (0.9 % and 0.7 % with seed 2), in that slice
     let s = dry_layer(&[
         "physics.slope=0.48191874977215593",
         "domain.bed_height=0.036",
         "solver.lagrangian.cells=132",
         "solver.lagrangian.stats_start=1.5",
         "solver.lagrangian.fluid_period=0.000237",
-        "solver.lagrangian.end_time=2.5",
+        "solver.lagrangian.end_time=4.5",
     ]);
     let (ep, et) = Balance::of(&s, "incline").errors(0.1);
     assert!(ep < 0.03 && et < 0.03, "p_p {ep}, tau_p {et}");
