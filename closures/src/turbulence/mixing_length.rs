@@ -37,6 +37,18 @@ impl MixingLengthForm {
     }
 }
 
+/// What the `li_sawamoto` integral takes inside the bed.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq, Params)]
+#[serde(rename_all = "snake_case")]
+pub enum PackedBed {
+    /// every cell adds its own open fraction (1 - phi/phi_max), clamped at 0
+    #[default]
+    Cellwise,
+    /// phi = phi_max in every cell below the highest cell at phi >= phi_max: the bed under
+    /// its packed top adds nothing (Maurin's coupled fluid-DEM code, see [`MixingLength`])
+    Packed,
+}
+
 /// Mixing-length eddy viscosity
 ///
 /// nu_t = l_m^2 |du/dz|,  R_xz / (rho_f (1 - phi)) = nu_t du/dz, with l_m by `form`:
@@ -90,6 +102,8 @@ pub struct MixingLength {
     /// minimal mixing length in diameters (berzi_fraccarollo)
     #[param(range = "[0, inf)", unit = "d")]
     pub floor: f64,
+    /// what the li_sawamoto integral takes inside the bed
+    pub bed: PackedBed,
 }
 
 impl Default for MixingLength {
@@ -101,6 +115,7 @@ impl Default for MixingLength {
             coefficient: 3.0,
             exponent: 3.0,
             floor: 0.2,
+            bed: PackedBed::Cellwise,
         }
     }
 }
@@ -134,12 +149,17 @@ impl Turbulence for MixingLength {
                 }
             }
             MixingLengthForm::LiSawamoto => {
+                // cells up to this index count as packed (none with `cellwise`)
+                let packed = match self.bed {
+                    PackedBed::Cellwise => None,
+                    PackedBed::Packed => col.phi.iter().rposition(|&phi| phi >= self.phi_max),
+                };
                 // integral of the open fraction over the full cells below the current one
                 let mut below = 0.0;
                 // lower face of the current cell, from the wall
                 let mut face = 0.0;
-                for (((o, &z), &dz), &phi) in out.iter_mut().zip(col.z).zip(col.dz).zip(col.phi) {
-                    let f = self.open_fraction(phi);
+                for (i, (((o, &z), &dz), &phi)) in out.iter_mut().zip(col.z).zip(col.dz).zip(col.phi).enumerate() {
+                    let f = if packed.is_some_and(|top| i <= top) { 0.0 } else { self.open_fraction(phi) };
                     *o = self.kappa * (below + f * (z - face));
                     below += f * dz;
                     face += dz;
@@ -214,6 +234,48 @@ mod tests {
     }
 
     #[test]
+    fn li_sawamoto_packed_bed_ignores_loose_cells_under_its_top() {
+        // a bed at phi_max up to z_b = 20 dz with loose cells (the layering over a rough
+        // bottom) at 2-4 dz, clear fluid above: with `packed` l_m = 0 in the bed and
+        // kappa (z - z_b) above, as without the loose cells; `cellwise` adds their open
+        // fraction 3 dz (1 - 0.5/phi_max) to every length above them
+        let packed = MixingLength { bed: PackedBed::Packed, ..MixingLength::default() };
+        let cellwise = MixingLength::default();
+        let dz0 = 1e-3;
+        let (z, dz) = uniform(100, dz0);
+        let zb = 20.0 * dz0;
+        let phi: Vec<f64> = (0..100)
+            .map(|i| {
+                if (2..5).contains(&i) {
+                    0.5
+                } else if i < 20 {
+                    packed.phi_max
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let offset = 0.41 * 3.0 * dz0 * (1.0 - 0.5 / cellwise.phi_max);
+        let (lp, lc) = (lengths(&packed, &z, &dz, &phi), lengths(&cellwise, &z, &dz, &phi));
+        for i in 0..100 {
+            let exact = 0.41 * (z[i] - zb).max(0.0);
+            assert!((lp[i] - exact).abs() <= 1e-14 * 0.41 * z[i], "z = {}: {} vs {exact}", z[i], lp[i]);
+            if i >= 5 {
+                assert_relative_eq!(lc[i], exact + offset, max_relative = 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn li_sawamoto_packed_bed_without_a_packed_cell_is_cellwise() {
+        // no cell reaches phi_max (a suspension, a dilute bed): nothing is packed
+        let packed = MixingLength { bed: PackedBed::Packed, ..MixingLength::default() };
+        let (z, dz) = uniform(50, 1e-3);
+        let phi: Vec<f64> = (0..50).map(|i| 0.6 * (1.0 - i as f64 / 50.0)).collect();
+        assert_eq!(lengths(&packed, &z, &dz, &phi), lengths(&MixingLength::default(), &z, &dz, &phi));
+    }
+
+    #[test]
     fn li_sawamoto_linear_profile_matches_integral() {
         // phi = phi_max (1 - z/H) over [0, H]: open fraction z/H, integral z^2/(2H); the
         // piecewise-constant integration is second order, exact up to O(dz^2).
@@ -266,6 +328,10 @@ mod tests {
         assert_eq!(p.form, MixingLengthForm::Prandtl);
         assert!(toml::from_str::<MixingLength>("form = \"Prandtl\"").is_err());
         assert!(toml::from_str::<MixingLength>("kapa = 0.4").is_err());
+        let b: MixingLength = toml::from_str("bed = \"packed\"").unwrap();
+        assert_eq!(b.bed, PackedBed::Packed);
+        assert_eq!(MixingLength::default().bed, PackedBed::Cellwise);
+        assert!(toml::from_str::<MixingLength>("bed = \"Packed\"").is_err());
     }
 
     #[test]
@@ -300,6 +366,32 @@ mod tests {
             }
             for (li, zi) in l.iter().zip(&z) {
                 prop_assert!(*li >= 0.0 && *li <= 0.41 * zi * (1.0 + 1e-12));
+            }
+        }
+
+        #[test]
+        fn li_sawamoto_packed_equals_cellwise_on_a_bed_loosening_upwards(
+            mut phi in proptest::collection::vec(0.0f64..0.8, 1..100),
+            dz in 1e-4f64..1e-2,
+        ) {
+            // the packed top is the last cell at phi_max: below it every cell is packed
+            // too, so both rules integrate the same open fractions
+            phi.sort_by(|a, b| b.total_cmp(a));
+            let (z, dzs) = uniform(phi.len(), dz);
+            let packed = MixingLength { bed: PackedBed::Packed, ..MixingLength::default() };
+            prop_assert_eq!(lengths(&packed, &z, &dzs, &phi), lengths(&MixingLength::default(), &z, &dzs, &phi));
+        }
+
+        #[test]
+        fn li_sawamoto_packed_never_longer_than_cellwise(
+            phi in proptest::collection::vec(0.0f64..0.8, 1..100),
+            dz in 1e-4f64..1e-2,
+        ) {
+            let (z, dzs) = uniform(phi.len(), dz);
+            let packed = MixingLength { bed: PackedBed::Packed, ..MixingLength::default() };
+            let (lp, lc) = (lengths(&packed, &z, &dzs, &phi), lengths(&MixingLength::default(), &z, &dzs, &phi));
+            for (p, c) in lp.iter().zip(&lc) {
+                prop_assert!(*p >= 0.0 && *p <= *c);
             }
         }
 
