@@ -158,10 +158,9 @@ fn coupled_bed(set: &[&str]) -> Scene {
 #[test]
 fn coupled_bed_stresses_balance_the_buoyant_weight_and_the_driving() {
     // theta about 0.17 (water depth 5 d), 1 s averaged after 0.5 s of flow, a sample every
-    // 2 ms (the contact stress of one sample is noisy). Measured: 0.25 % (p_p) and 0.52 %
-    // (tau_p) at worst, in the topmost slice with phi > 0.1 (0.51 % and 0.68 % before the
-    // coupling handed the fluid exactly the grains' drag); 2.7 % and 2.6 % over 3.5 s (the
-    // ignored test below, before that change: the bed surface drifts slowly)
+    // 2 ms (the contact stress of one sample is noisy). Measured: 0.51 % (p_p) and 0.68 %
+    // (tau_p) at worst, in the topmost slice with phi > 0.1; 2.7 % and 2.6 % over 3.5 s (the
+    // ignored test below: the bed surface drifts slowly)
     let s = coupled_bed(&[
         "solver.lagrangian.stats_start=0.5",
         "solver.lagrangian.end_time=1.5",
