@@ -178,3 +178,84 @@ fn revil_baudard_suspension_sheet_flows_reach_steady_state() {
         assert!(suspended > 1e-4, "{scene}: phi 2 cm above the bed {suspended:e}");
     }
 }
+
+/// Terminal velocity (m/s) of one grain of the scene under its drag law in still fluid:
+/// the root of C_D(w d / nu) w^2 = (4/3) (rho_p / rho_f - 1) g d (drag = submerged weight).
+fn terminal_velocity(s: &Scene) -> f64 {
+    let drag = s.closures.drag.as_ref().expect("a drag law");
+    let (d, nu) = (s.particles.diameter, s.fluid.viscosity);
+    let target = 4.0 / 3.0 * (s.particles.density / s.fluid.density - 1.0) * s.physics.gravity * d;
+    let (mut lo, mut hi) = (0.0, 10.0);
+    for _ in 0..200 {
+        let w = 0.5 * (lo + hi);
+        if drag.cd(w * d / nu) * w * w < target {
+            lo = w;
+        } else {
+            hi = w;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// Expected number of the scene's DEM grains whose centres lie in the Rouse fit range
+/// (0.1 h to 0.5 h above z_b, solvers/src/rouse.rs) in the diffusion limit of the particle
+/// face: the `eim` draws diffuse in the Ito form (docs/closures/fluctuation.md), the wall
+/// holds a grain's centre at the contact height d/2 (no flux below it), so the steady
+/// profile above d/2 is D phi ~ exp(-int_{d/2}^z w_s / D dz') (w_s phi = -d(D phi)/dz).
+/// D = the closure's diffusivity from k and omega of the cell holding z, read as the DEM
+/// reads them ([`FluidField::cell`]), on the steady k-omega column of the Eulerian solver
+/// (the fluid both faces see: the suspension is dilute); midpoint quadrature over 200
+/// sub-steps a cell.
+fn grains_in_the_rouse_range(rel: &str) -> f64 {
+    use saltus_core::{FlowScales, TurbulencePoint};
+    use saltus_solvers::lagrangian::drag::FluidField;
+    let s = load(rel, &[]);
+    let (m, ending) = run(&s);
+    assert_eq!(ending, Ending::Steady, "{rel}");
+    let (k, omega) = m.k_omega().expect("a k-omega column");
+    let (n, dz) = (m.len(), m.dz()[0]);
+    let field = FluidField::at_rest(n, dz, 0.0);
+    let fl = s.closures.fluctuation.as_ref().expect("a fluctuation closure");
+    let diffusivity = |z: f64| {
+        let c = field.cell(z);
+        fl.diffusivity(
+            &TurbulencePoint { k: k[c], omega: omega[c], ..TurbulencePoint::default() },
+            &FlowScales::default(),
+        )
+    };
+    let w_s = terminal_velocity(&s);
+    let (z_b, h) = (s.domain.bed_height, s.domain.water_depth);
+    let (bottom, top) = (0.5 * s.particles.diameter, n as f64 * dz);
+    let steps = 200 * n;
+    let step = (top - bottom) / steps as f64;
+    // ln of the unnormalised profile, kept in logs: the exponent reaches hundreds
+    let mut exponent = 0.0;
+    let log_phi: Vec<(f64, f64)> = (0..steps)
+        .map(|i| {
+            let z = bottom + (i as f64 + 0.5) * step;
+            let d = diffusivity(z);
+            assert!(d > 0.0, "{rel}: no diffusivity at z = {z}");
+            exponent += w_s / d * step;
+            (z, -exponent - d.ln())
+        })
+        .collect();
+    let peak = log_phi.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
+    let total: f64 = log_phi.iter().map(|p| (p.1 - peak).exp()).sum();
+    let range = (z_b + 0.1 * h)..=(z_b + 0.5 * h);
+    let inside: f64 = log_phi.iter().filter(|p| range.contains(&p.0)).map(|p| (p.1 - peak).exp()).sum();
+    s.solver.lagrangian.particles.expect("a particle count") as f64 * inside / total
+}
+
+/// Issue 12 item 4: the DEM face of `eim` on Cheng's two dilute channels. Kiger & Pan's
+/// grains (w_s = 2.24 cm/s) rest at d/2 = 97.5 um, z+ = 2.8, where the wall cell gives
+/// D = 0.012 nu: the steady state holds less than one of the 476 grains in the Rouse fit
+/// range (so the DEM has no Rouse number to give; the runs: no grain rises 6 um off its
+/// contact). NS1's (d/2 = 115 um, z+ = 4.8, the second cell, D = 1.6 nu) put more than 10
+/// of the 803 there, enough for the DEM to fit a Rouse number (docs/benchmarks.md).
+#[test]
+fn the_dem_face_suspends_nothing_in_kiger_pan_and_enough_in_ns1() {
+    let kiger_pan = grains_in_the_rouse_range("cases/cheng/dilute_kiger_pan.toml");
+    assert!(kiger_pan < 1.0, "Kiger & Pan: {kiger_pan} grains in the Rouse range");
+    let ns1 = grains_in_the_rouse_range("cases/cheng/dilute_muste_ns1.toml");
+    assert!(ns1 > 10.0, "NS1: {ns1} grains in the Rouse range");
+}
