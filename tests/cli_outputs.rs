@@ -245,3 +245,28 @@ fn an_interrupted_compare_exits_130() {
     assert_eq!(o.status.code(), Some(130), "{err}");
     assert!(err.contains("interrupted") && !err.contains("panicked"), "{err}");
 }
+
+#[test]
+fn a_restart_that_switches_the_vtk_snapshots_on_writes_one_per_period() {
+    // the snapshot clock starts at 0 with the run: on a restart at t = 0.1 s it must not
+    // write one snapshot per fluid update (0.01 s) until it catches up
+    let d = tmp_dir("restart_vtk_on");
+    let o = d.to_str().unwrap();
+    let r = saltus(&dem_args(o, "solver.lagrangian.end_time=0.1", &[]));
+    assert!(r.status.success(), "{}", stderr(&r));
+    let r = saltus(&dem_args(
+        o,
+        "solver.lagrangian.end_time=0.16",
+        &["--set", "solver.lagrangian.vtk_period=0.02", "--restart", o],
+    ));
+    assert!(r.status.success(), "{}", stderr(&r));
+    let pvd = std::fs::read_to_string(d.join("vtk").join("series.pvd")).unwrap();
+    let times: Vec<f64> = pvd
+        .lines()
+        .filter(|l| l.starts_with("<DataSet") && l.contains("part=\"0\""))
+        .map(|l| l.split("timestep=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap())
+        .collect();
+    // 0.1 s to 0.16 s at one snapshot per 0.02 s: 3, at fluid updates 0.01 s apart
+    assert!((2..=4).contains(&times.len()), "{times:?}");
+    assert!(times.windows(2).all(|w| w[1] - w[0] > 0.015), "{times:?}");
+}

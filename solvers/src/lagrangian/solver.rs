@@ -466,7 +466,14 @@ impl<'a> Lagrangian<'a> {
             }
             if self.vtk.is_some() && self.time >= self.next_vtk {
                 self.write_vtk();
-                self.next_vtk += self.cfg.settings.numerics.vtk_period;
+                let period = self.cfg.settings.numerics.vtk_period;
+                self.next_vtk += period;
+                if self.next_vtk <= self.time {
+                    // behind the clock (a restart that switched the snapshots on, or a
+                    // period shorter than the fluid's): the next period boundary after
+                    // now, never one snapshot per update to catch up
+                    self.next_vtk += ((self.time - self.next_vtk) / period).floor().min(1e15) * period + period;
+                }
             }
         } else if checkpoint {
             self.check().map_err(Ending::Unstable)?;
