@@ -60,6 +60,7 @@ fn channel_k_omega(c: &mut Criterion) {
     let closures = Closures {
         viscosity: scene.closures.viscosity.as_deref().expect("viscosity"),
         turbulence: scene.closures.turbulence.as_deref().expect("turbulence"),
+        wall_friction: None,
     };
     let zero = vec![0.0; cfg.cells];
     let coupling = Coupling { phi: &zero, beta: &zero, u_p: &zero };

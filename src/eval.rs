@@ -11,12 +11,12 @@ use saltus_core::scene::{closure_from_value, to_toml_table};
 use saltus_core::{registry, runtime};
 use saltus_core::{
     ColumnView, Describe, DragLaw, EffectiveViscosity, Field, FlowScales, Fluctuation, GranularStress, Hindrance,
-    ParticleSlip, Turbulence, TurbulencePoint,
+    ParticleSlip, Turbulence, TurbulencePoint, WallFriction,
 };
 
 use crate::table::Table;
 
-/// A family as seen by `closure eval`: the six scene families plus `kinetic_theory`, the
+/// A family as seen by `closure eval`: the seven scene families plus `kinetic_theory`, the
 /// kinetic part of a `frictional_collisional` granular table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum EvalFamily {
@@ -35,6 +35,9 @@ pub enum EvalFamily {
     Turbulence,
     /// fluctuation diffusivity and one stochastic draw per row
     Fluctuation,
+    /// friction factor of smooth side walls
+    #[value(name = "wall_friction")]
+    WallFriction,
 }
 
 impl EvalFamily {
@@ -51,6 +54,7 @@ impl EvalFamily {
             EvalFamily::Fluctuation => {
                 &["k", "omega", "nu_t", "reynolds_stress", "slip", "response_time", "depth", "bulk_velocity"]
             }
+            EvalFamily::WallFriction => &["re"],
         }
     }
 
@@ -85,6 +89,7 @@ impl EvalFamily {
             EvalFamily::KineticTheory => &["g0", "f1", "f2", "f3", "f4", "e_eff"],
             EvalFamily::Turbulence => &["l_m", "nu_t"],
             EvalFamily::Fluctuation => &["diffusivity", "u_x", "u_y", "u_z", "duration"],
+            EvalFamily::WallFriction => &["f", "f_re"],
         }
     }
 
@@ -104,11 +109,12 @@ impl EvalFamily {
             EvalFamily::Granular | EvalFamily::KineticTheory => Family::Granular,
             EvalFamily::Turbulence => Family::Turbulence,
             EvalFamily::Fluctuation => Family::Fluctuation,
+            EvalFamily::WallFriction => Family::WallFriction,
         })
     }
 
     /// Every family, for help texts.
-    pub const ALL: [EvalFamily; 7] = [
+    pub const ALL: [EvalFamily; 8] = [
         EvalFamily::Drag,
         EvalFamily::Hindrance,
         EvalFamily::Viscosity,
@@ -116,6 +122,7 @@ impl EvalFamily {
         EvalFamily::KineticTheory,
         EvalFamily::Turbulence,
         EvalFamily::Fluctuation,
+        EvalFamily::WallFriction,
     ];
 
     /// Help paragraph listing every family's inputs and outputs.
@@ -130,7 +137,8 @@ impl EvalFamily {
              saltation off, f4 with the effective restitution e_eff; turbulence rows are the cells\n\
              of one column ordered from the bottom wall (z = cell centres, faces half-way);\n\
              fluctuation inputs default to 0 except those the model needs; its draw uses --seed,\n\
-             one stream per row.",
+             one stream per row; wall_friction re is |U| W / nu_f on the channel width W, f Re\n\
+             the Poiseuille number (finite at re = 0).",
         );
         s
     }
@@ -199,6 +207,8 @@ pub enum AnyClosure {
     Turbulence(Box<dyn Turbulence>),
     /// a fluctuation model
     Fluctuation(Box<dyn Fluctuation>),
+    /// a side-wall friction factor
+    WallFriction(Box<dyn WallFriction>),
 }
 
 impl AnyClosure {
@@ -212,6 +222,7 @@ impl AnyClosure {
             Family::Granular => AnyClosure::Granular(closure_from_value(model, family, file, key)?),
             Family::Turbulence => AnyClosure::Turbulence(closure_from_value(model, family, file, key)?),
             Family::Fluctuation => AnyClosure::Fluctuation(closure_from_value(model, family, file, key)?),
+            Family::WallFriction => AnyClosure::WallFriction(closure_from_value(model, family, file, key)?),
         })
     }
 
@@ -224,6 +235,7 @@ impl AnyClosure {
             AnyClosure::Granular(m) => m.as_ref(),
             AnyClosure::Turbulence(m) => m.as_ref(),
             AnyClosure::Fluctuation(m) => m.as_ref(),
+            AnyClosure::WallFriction(m) => m.as_ref(),
         }
     }
 
@@ -236,6 +248,7 @@ impl AnyClosure {
             AnyClosure::Granular(m) => to_toml_table(m),
             AnyClosure::Turbulence(m) => to_toml_table(m),
             AnyClosure::Fluctuation(m) => to_toml_table(m),
+            AnyClosure::WallFriction(m) => to_toml_table(m),
         }
     }
 }
@@ -396,6 +409,14 @@ impl Model {
                 for (name, c) in ["diffusivity", "u_x", "u_y", "u_z", "duration"].into_iter().zip(cols) {
                     out.push(name, c);
                 }
+            }
+            AnyClosure::WallFriction(m) => {
+                let re = need(input, "re", family, origin)?;
+                check_reynolds(re, rows)?;
+                let mut po = re.to_vec();
+                m.poiseuille_batch(&mut po);
+                out.push("f", po.iter().zip(re).map(|(&p, &r)| p / r).collect());
+                out.push("f_re", po);
             }
         }
         Ok(out)

@@ -21,7 +21,7 @@ enum Command {
     /// List every registered closure model per family, with parameters, defaults, ranges
     /// and sources.
     Models {
-        /// only this family (drag, hindrance, viscosity, granular, turbulence, fluctuation)
+        /// only this family (drag, hindrance, viscosity, granular, turbulence, fluctuation, wall_friction)
         family: Option<String>,
         /// machine-readable JSON instead of text
         #[arg(long)]
@@ -133,7 +133,7 @@ enum ClosureCommand {
     /// ranges, batch = scalar, the model's declared limits. Exit 0 when all pass, 1 when a
     /// check fails, 2 on bad input.
     Check {
-        /// closure family (drag, hindrance, viscosity, granular, turbulence, fluctuation)
+        /// closure family (drag, hindrance, viscosity, granular, turbulence, fluctuation, wall_friction)
         #[arg(long)]
         family: String,
         /// the model's TOML table, e.g. 'type = "dallavalle"' or '{type = "richardson_zaki", exponent = 4.65}'

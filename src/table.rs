@@ -88,12 +88,20 @@ impl Table {
         Self::read_csv(f, &path.display().to_string())
     }
 
-    /// Write as CSV (full precision, round-trippable).
+    /// Write as CSV (full precision, round-trippable); a value that is not finite (C_D at
+    /// Re_p = 0, f of a laminar wall law at rest) is undefined there and written as an
+    /// empty cell, as in a run's `profiles.csv`.
     pub fn write_csv(&self, writer: impl Write) -> anyhow::Result<()> {
         let mut w = csv::Writer::from_writer(writer);
         w.write_record(&self.names)?;
         for r in 0..self.rows() {
-            w.write_record(self.columns.iter().map(|c| format!("{}", c[r])))?;
+            w.write_record(self.columns.iter().map(|c| {
+                if c[r].is_finite() {
+                    format!("{}", c[r])
+                } else {
+                    String::new()
+                }
+            }))?;
         }
         w.flush()?;
         Ok(())
@@ -114,6 +122,16 @@ impl Table {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn non_finite_values_are_written_as_empty_cells() {
+        let mut t = Table::default();
+        t.push("re_p", vec![0.0, 1.0, 2.0]);
+        t.push("cd", vec![f64::INFINITY, 24.4, f64::NAN]);
+        let mut buf = Vec::new();
+        t.write_csv(&mut buf).unwrap();
+        assert_eq!(String::from_utf8(buf).unwrap(), "re_p,cd\n0,\n1,24.4\n2,\n");
+    }
 
     #[test]
     fn csv_round_trip_and_errors() {

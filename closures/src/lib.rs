@@ -15,6 +15,7 @@ pub mod hindrance;
 pub mod runtime;
 pub mod turbulence;
 pub mod viscosity;
+pub mod wall_friction;
 
 #[cfg(test)]
 pub(crate) mod testing;

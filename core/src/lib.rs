@@ -34,6 +34,7 @@ pub use closure::granular::{
 pub use closure::hindrance::{DragReynolds, Hindrance};
 pub use closure::turbulence::{ColumnView, Turbulence};
 pub use closure::viscosity::EffectiveViscosity;
+pub use closure::wall_friction::WallFriction;
 pub use closure::Family;
 pub use error::{Error, Result};
 pub use needs::{Field, Needs};

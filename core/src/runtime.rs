@@ -15,12 +15,15 @@ use std::sync::{Arc, PoisonError, RwLock};
 
 use crate::closure::Family;
 use crate::param::{Describe, Limit, Param, ParamError};
-use crate::{DragLaw, DragReynolds, EffectiveViscosity, Fluctuation, GranularStress, Hindrance, Turbulence};
+use crate::{
+    DragLaw, DragReynolds, EffectiveViscosity, Fluctuation, GranularStress, Hindrance, Turbulence, WallFriction,
+};
 
 /// Families a run-time closure may belong to: those whose trait is a function of arrays of
 /// numbers. The granular stress (two faces, a packing inverse and a pressure solved by
 /// bisection, grain properties inherited), turbulence (column views, transported fields)
-/// and fluctuation (a seeded random draw per particle) are not.
+/// and fluctuation (a seeded random draw per particle) are not; nor, yet, the wall friction
+/// (a law of one number, which only the narrow-channel DEM uses).
 pub const FAMILIES: [Family; 3] = [Family::Drag, Family::Hindrance, Family::Viscosity];
 
 /// Input names and output names of the function of a run-time closure of `family`: the
@@ -30,7 +33,7 @@ pub fn io(family: Family) -> Option<(&'static [&'static str], &'static [&'static
         Family::Drag => Some((&["re_p"], &["cd"])),
         Family::Hindrance => Some((&["phi", "re_p"], &["factor"])),
         Family::Viscosity => Some((&["phi"], &["nu_ratio"])),
-        Family::Granular | Family::Turbulence | Family::Fluctuation => None,
+        Family::Granular | Family::Turbulence | Family::Fluctuation | Family::WallFriction => None,
     }
 }
 
@@ -135,7 +138,7 @@ macro_rules! from_runtime {
     };
 }
 
-from_runtime!(DragLaw => Drag, Hindrance => Hindrance, EffectiveViscosity => Viscosity; GranularStress, Turbulence, Fluctuation);
+from_runtime!(DragLaw => Drag, Hindrance => Hindrance, EffectiveViscosity => Viscosity; GranularStress, Turbulence, Fluctuation, WallFriction);
 
 /// One run-time closure: what the registry lists and the scene loader checks, and how to
 /// build it. Strings are `'static` because [`crate::Describe`] hands them out so; a

@@ -54,7 +54,7 @@ fn integral_balance(col: &FluidColumn, inp: &Inputs) -> (f64, f64) {
 fn laminar_couette_is_exact_at_centres_and_faces() {
     let lam = turbulence("type = \"laminar\"");
     let clear = viscosity("type = \"clear_fluid\"");
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref() };
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref(), wall_friction: None };
     let (h, lid) = (0.02, 0.3);
     for grid in [Grid::uniform(50, h).unwrap(), Grid::geometric(64, h, 1.05).unwrap()] {
         let params = ColumnParams { top: TopBoundary::Lid { velocity: lid }, ..ColumnParams::default() };
@@ -87,7 +87,7 @@ fn two_layer_couette_harmonic_faces_are_exact() {
     let lam = turbulence("type = \"laminar\"");
     for law in ["einstein", "krieger_dougherty"] {
         let visc = viscosity(&format!("type = \"{law}\""));
-        let closures = Closures { viscosity: visc.as_ref(), turbulence: lam.as_ref() };
+        let closures = Closures { viscosity: visc.as_ref(), turbulence: lam.as_ref(), wall_friction: None };
         let (h, n, lid, phi_bed) = (0.02, 40, 0.3, 0.6);
         let params = ColumnParams { top: TopBoundary::Lid { velocity: lid }, ..ColumnParams::default() };
         let mut col = FluidColumn::new(Grid::uniform(n, h).unwrap(), params).unwrap();
@@ -122,7 +122,7 @@ fn two_layer_couette_harmonic_faces_are_exact() {
 fn laminar_open_channel_is_exact_at_nodes() {
     let lam = turbulence("type = \"laminar\"");
     let clear = viscosity("type = \"clear_fluid\"");
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref() };
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref(), wall_friction: None };
     let (h, n) = (0.01, 40);
     let mu = 1000.0 * 1e-6;
     // driven by a pressure gradient, then by gravity along a slope (same G), then with a
@@ -166,7 +166,7 @@ fn laminar_open_channel_is_exact_at_nodes() {
 fn laminar_open_channel_stretched_grid_is_second_order() {
     let lam = turbulence("type = \"laminar\"");
     let clear = viscosity("type = \"clear_fluid\"");
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref() };
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref(), wall_friction: None };
     let (h, g, mu) = (0.01, 2.0, 1e-3);
     let mut errors = Vec::new();
     for n in [40usize, 80, 160] {
@@ -220,7 +220,7 @@ fn turbulent_log_layer_with_prandtl_mixing_length() {
     let kappa = 0.41;
     let prandtl = turbulence("type = \"mixing_length\"\nform = \"prandtl\"\nkappa = 0.41");
     let clear = viscosity("type = \"clear_fluid\"");
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: prandtl.as_ref() };
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: prandtl.as_ref(), wall_friction: None };
     let (rho, nu, h) = (1000.0, 1e-6, 0.1);
     for (h_plus, n, ratio, slope_tol) in [(1.0e5, 400, 1.03, 0.02), (5.0e3, 300, 1.02, 0.04)] {
         let u_star = h_plus * nu / h;
@@ -288,7 +288,7 @@ fn turbulent_log_layer_with_prandtl_mixing_length() {
 fn drag_coupling_interior_balance_and_integral_balance() {
     let lam = turbulence("type = \"laminar\"");
     let einstein = viscosity("type = \"einstein\"");
-    let closures = Closures { viscosity: einstein.as_ref(), turbulence: lam.as_ref() };
+    let closures = Closures { viscosity: einstein.as_ref(), turbulence: lam.as_ref(), wall_friction: None };
     let (h, n, phi, beta, up) = (0.01, 400, 0.3, 1.0e5, 0.05);
     let params = ColumnParams { gravity_x: 9.81 * 0.05, pressure_gradient: 30.0, ..ColumnParams::default() };
     let mut col = FluidColumn::new(Grid::uniform(n, h).unwrap(), params).unwrap();
@@ -327,7 +327,7 @@ fn drag_coupling_interior_balance_and_integral_balance() {
 fn li_sawamoto_bed_case() {
     let ls = turbulence("type = \"mixing_length\"\nform = \"li_sawamoto\"");
     let kd = viscosity("type = \"krieger_dougherty\"");
-    let closures = Closures { viscosity: kd.as_ref(), turbulence: ls.as_ref() };
+    let closures = Closures { viscosity: kd.as_ref(), turbulence: ls.as_ref(), wall_friction: None };
     let (h, n, zb) = (0.1, 300, 0.03);
     let params = ColumnParams { gravity_x: 9.81 * 0.01, diameter: 6e-3, ..ColumnParams::default() };
     let grid = Grid::uniform(n, h).unwrap();
@@ -389,7 +389,7 @@ fn li_sawamoto_bed_case() {
 fn backward_euler_steps_drag_relaxation_and_reach_steady_state() {
     let lam = turbulence("type = \"laminar\"");
     let clear = viscosity("type = \"clear_fluid\"");
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref() };
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref(), wall_friction: None };
     let (h, n, phi, beta, up, dt) = (0.01, 100, 0.2, 1.0e5, 0.02, 1e-3);
     let params = ColumnParams { pressure_gradient: 50.0, ..ColumnParams::default() };
     let mut col = FluidColumn::new(Grid::uniform(n, h).unwrap(), params).unwrap();
@@ -412,7 +412,7 @@ fn backward_euler_steps_drag_relaxation_and_reach_steady_state() {
     }
     // the turbulent case stepped in time converges to the same state as solve_steady
     let prandtl = turbulence("type = \"mixing_length\"\nform = \"prandtl\"");
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: prandtl.as_ref() };
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: prandtl.as_ref(), wall_friction: None };
     // h = 0.1 m, u* = 0.032 m/s (h+ = 3200)
     let params = ColumnParams { pressure_gradient: 10.0, ..ColumnParams::default() };
     let clear_in = Inputs::clear(n);
@@ -433,7 +433,7 @@ fn backward_euler_steps_drag_relaxation_and_reach_steady_state() {
 fn nan_in_beta_is_an_error_naming_cell_and_field() {
     let lam = turbulence("type = \"laminar\"");
     let clear = viscosity("type = \"clear_fluid\"");
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref() };
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref(), wall_friction: None };
     let n = 20;
     let mut col = FluidColumn::new(Grid::uniform(n, 0.01).unwrap(), ColumnParams::default()).unwrap();
     let mut inp = Inputs::clear(n);
@@ -459,7 +459,7 @@ fn nan_in_beta_is_an_error_naming_cell_and_field() {
     ));
     // Krieger-Dougherty diverges above phi_m: refused with the cell
     let kd = viscosity("type = \"krieger_dougherty\"");
-    let kd_closures = Closures { viscosity: kd.as_ref(), turbulence: lam.as_ref() };
+    let kd_closures = Closures { viscosity: kd.as_ref(), turbulence: lam.as_ref(), wall_friction: None };
     inp.phi[3] = 0.63;
     assert!(matches!(
         col.step(1e-3, &inp.coupling(), &kd_closures),
@@ -478,7 +478,7 @@ fn nan_in_beta_is_an_error_naming_cell_and_field() {
 fn overflow_of_u_f_is_an_error_naming_time_cell_and_field() {
     let lam = turbulence("type = \"laminar\"");
     let clear = viscosity("type = \"clear_fluid\"");
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref() };
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref(), wall_friction: None };
     let n = 10;
     // u ~ G h^2 / (2 mu) overflows
     let params = ColumnParams { pressure_gradient: 1e308, ..ColumnParams::default() };
@@ -501,7 +501,7 @@ fn overflow_of_u_f_is_an_error_naming_time_cell_and_field() {
 fn steady_not_converged_is_reported() {
     let prandtl = turbulence("type = \"mixing_length\"\nform = \"prandtl\"");
     let clear = viscosity("type = \"clear_fluid\"");
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: prandtl.as_ref() };
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: prandtl.as_ref(), wall_friction: None };
     let params = ColumnParams { pressure_gradient: 10.0, ..ColumnParams::default() };
     let mut col = FluidColumn::new(Grid::uniform(50, 0.1).unwrap(), params).unwrap();
     let inp = Inputs::clear(50);
@@ -548,7 +548,7 @@ fn k_omega_channel_matches_the_eulerian_solver() {
 
     let ko = turbulence("type = \"k_omega\"");
     let clear = viscosity("type = \"clear_fluid\"");
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: ko.as_ref() };
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: ko.as_ref(), wall_friction: None };
     let gx = scene.physics.pressure_gradient;
     let params = ColumnParams { pressure_gradient: gx, top: TopBoundary::Symmetry, ..ColumnParams::default() };
     let inp = Inputs::clear(n);
@@ -587,7 +587,7 @@ fn k_omega_channel_matches_the_eulerian_solver() {
 fn k_omega_with_a_lid_is_refused() {
     let ko = turbulence("type = \"k_omega\"");
     let clear = viscosity("type = \"clear_fluid\"");
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: ko.as_ref() };
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: ko.as_ref(), wall_friction: None };
     let params = ColumnParams { top: TopBoundary::Lid { velocity: 0.1 }, ..ColumnParams::default() };
     let mut col = FluidColumn::new(Grid::uniform(16, 0.01).unwrap(), params).unwrap();
     let inp = Inputs::clear(16);

@@ -1,14 +1,16 @@
 //! The side-wall friction of the fluid column (Maurin et al. 2015 section III B,
-//! `solvers/src/column/side_walls.rs`): the friction-factor law, the laminar slot against
+//! `solvers/src/column/side_walls.rs`, with the `graf_altinakar` closure of the
+//! `wall_friction` family, whose own law is tested beside it): the laminar slot against
 //! its closed form, the momentum balance of a turbulent column, and the limit of wide
 //! channels. Run with `cargo test --release -p saltus-solvers --test side_walls`.
 
 use std::path::Path;
 
+use saltus_closures::wall_friction::graf_altinakar::RE_LAMINAR;
+use saltus_closures::wall_friction::GrafAltinakar;
 use saltus_core::closure::Family;
 use saltus_core::scene::{closure_from_value, parse_table};
-use saltus_core::{EffectiveViscosity, Turbulence};
-use saltus_solvers::column::side_walls::{friction_factor, RE_LAMINAR};
+use saltus_core::{EffectiveViscosity, Turbulence, WallFriction};
 use saltus_solvers::column::{Closures, ColumnError, ColumnParams, Coupling, FluidColumn, Grid, SideWalls};
 
 fn turbulence(text: &str) -> Box<dyn Turbulence> {
@@ -23,49 +25,6 @@ fn clear_fluid() -> Box<dyn EffectiveViscosity> {
     closure_from_value(t.into(), Family::Viscosity, Path::new("test"), "closures.viscosity").expect("viscosity")
 }
 
-fn log_range(lo: f64, hi: f64, n: usize) -> impl Iterator<Item = f64> {
-    (0..=n).map(move |i| lo * (hi / lo).powf(i as f64 / n as f64))
-}
-
-#[test]
-fn friction_factor_solves_the_graf_altinakar_law() {
-    for re in log_range(RE_LAMINAR * 1.000_001, 1e9, 60) {
-        let f = friction_factor(re);
-        let lhs = 1.0 / f.sqrt();
-        let rhs = 2.0 * (re * f.sqrt() / 4.0).log10() + 0.32;
-        assert!((lhs - rhs).abs() < 1e-12 * lhs, "Re {re}: 1/sqrt(f) {lhs} against {rhs}");
-    }
-}
-
-#[test]
-fn friction_factor_is_continuous_at_the_switch() {
-    let below = friction_factor(RE_LAMINAR);
-    let above = friction_factor(RE_LAMINAR * (1.0 + 1e-12));
-    assert_eq!(below, 48.0 / RE_LAMINAR);
-    assert!((above / below - 1.0).abs() < 1e-9, "laminar {below} turbulent {above}");
-}
-
-#[test]
-fn friction_factor_decreases_with_the_reynolds_number_and_vanishes() {
-    let mut last = f64::INFINITY;
-    for re in log_range(1e-3, 1e12, 300) {
-        let f = friction_factor(re);
-        assert!(f.is_finite() && f > 0.0 && f < last, "Re {re}: f {f} after {last}");
-        last = f;
-    }
-    assert!(friction_factor(1e12) < 3e-3);
-}
-
-/// An independent smooth-wall law: Blasius 0.3164 Re^-1/4, the alternative of the
-/// authors' implementation, valid for 3e3 < Re < 1e5.
-#[test]
-fn friction_factor_agrees_with_blasius_in_its_range() {
-    for re in log_range(3e3, 1e5, 20) {
-        let (f, blasius) = (friction_factor(re), 0.3164 * re.powf(-0.25));
-        assert!((f / blasius - 1.0).abs() < 0.07, "Re {re}: f {f} against Blasius {blasius}");
-    }
-}
-
 /// A laminar slot of width W between the walls: gamma_w = 12 mu / W^2 and the column is
 /// the Brinkman equation nu u'' - 12 nu u / W^2 + g_x = 0, u(0) = 0, u'(H) = 0, whose
 /// solution is u = U (1 - cosh(k (H - z)) / cosh(k H)), U = g_x W^2 / (12 nu),
@@ -74,7 +33,8 @@ fn friction_factor_agrees_with_blasius_in_its_range() {
 fn laminar_slot_matches_the_brinkman_profile() {
     let lam = turbulence("type = \"laminar\"");
     let clear = clear_fluid();
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref() };
+    let walls = GrafAltinakar::default();
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: lam.as_ref(), wall_friction: Some(&walls) };
     let (w, h, nu, gx) = (1.0e-3, 2.0e-3, 1.0e-6, 1.2);
     let u_slot = gx * w * w / (12.0 * nu);
     assert!(u_slot * w / nu < RE_LAMINAR);
@@ -112,7 +72,8 @@ fn laminar_slot_matches_the_brinkman_profile() {
 fn turbulent_column_balances_driving_against_bed_and_walls() {
     let ml = turbulence("type = \"mixing_length\"\nform = \"prandtl\"");
     let clear = clear_fluid();
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: ml.as_ref() };
+    let walls = GrafAltinakar::default();
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: ml.as_ref(), wall_friction: Some(&walls) };
     let (h, n, gx, nu, rho) = (0.02, 200, 0.98, 1.0e-6, 1000.0);
     let zero = vec![0.0; n];
     let c = Coupling { phi: &zero, beta: &zero, u_p: &zero };
@@ -126,7 +87,7 @@ fn turbulent_column_balances_driving_against_bed_and_walls() {
             .velocity()
             .iter()
             .zip(col.grid().dz())
-            .map(|(&u, &dz)| 2.0 / w * rho * friction_factor(u.abs() * w / nu) * u * u / 8.0 * dz)
+            .map(|(&u, &dz)| 2.0 / w * rho * walls.friction_factor(u.abs() * w / nu) * u * u / 8.0 * dz)
             .sum();
         let drive = rho * gx * h;
         let imbalance = (drive - col.wall_shear_stress() - walls).abs() / drive;
@@ -148,7 +109,8 @@ fn turbulent_column_balances_driving_against_bed_and_walls() {
 fn wide_channel_recovers_the_column_without_walls() {
     let ml = turbulence("type = \"mixing_length\"\nform = \"prandtl\"");
     let clear = clear_fluid();
-    let closures = Closures { viscosity: clear.as_ref(), turbulence: ml.as_ref() };
+    let walls = GrafAltinakar::default();
+    let closures = Closures { viscosity: clear.as_ref(), turbulence: ml.as_ref(), wall_friction: Some(&walls) };
     let n = 120;
     let zero = vec![0.0; n];
     let phi: Vec<f64> = (0..n).map(|i| if i < 30 { 0.5 } else { 0.0 }).collect();
@@ -181,28 +143,30 @@ fn bad_width_is_refused() {
     }
 }
 
-/// The scene key: refused at load (so by `check` and `run` alike) without the walls or
-/// without a fluid column, naming the file and the key; on in the Frey scenes.
+/// The scene's `[closures.wall_friction]`: refused at load (so by `check` and `run` alike)
+/// without the walls, without a fluid column or in the Eulerian solver, naming the file and
+/// the key; an unknown model names the known ones; on in the Frey scenes.
 #[test]
-fn scene_key_needs_walls_and_a_coupled_fluid() {
-    use saltus_core::scene::{Scene, SideWallFriction};
+fn scene_table_needs_walls_and_a_coupled_fluid() {
+    use saltus_core::scene::Scene;
     saltus_closures::link();
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/maurin2015/frey_sim6.toml");
     let load = |sets: &[&str]| {
         Scene::from_file_with(&file, &sets.iter().map(|s| s.to_string()).collect::<Vec<_>>()).map_err(|e| e.to_string())
     };
     let scene = load(&[]).expect("frey_sim6");
-    assert_eq!(scene.solver.lagrangian.side_wall_friction, SideWallFriction::GrafAltinakar);
+    assert_eq!(scene.closures.wall_friction.as_deref().map(|m| m.name()), Some("graf_altinakar"));
+    let off = load(&["closures.wall_friction.type=\"none\""]).expect("none");
+    assert_eq!(off.closures.wall_friction.as_deref().map(|m| m.poiseuille_number(1e4)), Some(0.0));
     for (sets, allowed) in [
         (&["solver.lagrangian.side_walls=false", "solver.lagrangian.width=0.12"][..], "side_walls = true"),
         (&["solver.lagrangian.fluid=\"still\""][..], "fluid = \"coupled\""),
-        (&["solver.lagrangian.side_wall_friction=\"smooth\""][..], "graf_altinakar"),
+        (&["solver.type=\"eulerian\"", "domain.cells=200"][..], "no channel width"),
+        (&["closures.wall_friction.type=\"smooth\""][..], "graf_altinakar"),
     ] {
         let err = load(sets).expect_err("refused");
         assert!(
-            err.contains("frey_sim6.toml")
-                && err.contains("solver.lagrangian.side_wall_friction")
-                && err.contains(allowed),
+            err.contains("frey_sim6.toml") && err.contains("closures.wall_friction") && err.contains(allowed),
             "{sets:?}: {err}"
         );
     }

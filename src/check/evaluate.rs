@@ -114,6 +114,10 @@ pub(super) fn finite_at(m: &Built, x: &[f64]) -> Result<(), String> {
             }
             Ok(())
         }
+        Built::WallFriction(m) => {
+            finite_or("f", m.friction_factor(x[0]))?;
+            finite_or("f Re", m.poiseuille_number(x[0]))
+        }
     }
 }
 
@@ -125,6 +129,7 @@ pub(super) fn finite(space: &ParamSpace, family: Family, opts: Options) -> Outco
         Family::Granular => "I or K in [1e-8, 1e3] (kinetic theory: phi below phi_max)",
         Family::Turbulence => "d in [1e-5, 1e-2] m, phi_bed in [0, 0.6], dudz in [0, 100] 1/s",
         Family::Fluctuation => "turbulence, slip and flow scales of open-channel flows",
+        Family::WallFriction => "Re in [1e-6, 1e9]",
     };
     run_property(
         "finite",
@@ -208,6 +213,12 @@ pub(super) fn batch_at(m: &Built, xs: &[Vec<f64>]) -> Result<(), String> {
             let t: Vec<TurbulencePoint> = xs.iter().map(|x| fluctuation_point(x).0).collect();
             m.diffusivity_batch(&t, &s, &mut out);
             cmp("diffusivity", &out, &t.iter().map(|t| m.diffusivity(t, &s)).collect::<Vec<_>>())
+        }
+        Built::WallFriction(m) => {
+            let re = col(0);
+            out.copy_from_slice(&re);
+            m.poiseuille_batch(&mut out);
+            cmp("f Re", &out, &re.iter().map(|&r| m.poiseuille_number(r)).collect::<Vec<_>>())
         }
     }
 }

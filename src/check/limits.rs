@@ -55,7 +55,10 @@ pub(super) fn declared_limit(space: &ParamSpace, family: Family, index: usize, l
         Limit::Dilute => matches!(family, Family::Hindrance | Family::Viscosity),
         Limit::Einstein { .. } => family == Family::Viscosity,
         Limit::Decreasing | Limit::Increasing => {
-            matches!(family, Family::Drag | Family::Hindrance | Family::Viscosity | Family::Granular)
+            matches!(
+                family,
+                Family::Drag | Family::Hindrance | Family::Viscosity | Family::Granular | Family::WallFriction
+            )
         }
         _ => false,
     };
@@ -70,10 +73,12 @@ pub(super) fn declared_limit(space: &ParamSpace, family: Family, index: usize, l
                 Family::Drag => vec![reynolds(), log_uniform(1e-6, 1e2)].boxed(),
                 Family::Hindrance => vec![(0.0..=0.6).boxed(), (0.0..=0.3).boxed(), reynolds()].boxed(),
                 Family::Viscosity => vec![(0.0..0.999).boxed(), (0.0..=0.5).boxed()].boxed(),
+                Family::WallFriction => vec![log_uniform(1e-6, 1e9), log_uniform(1e-6, 1e2)].boxed(),
                 _ => vec![log_uniform(1e-8, 1e3), log_uniform(1e-6, 1e2)].boxed(),
             };
             let show = move |x: &Vec<f64>| match family {
                 Family::Drag => format!("re_p = {}, re_p * (1 + {})", number(x[0]), number(x[1])),
+                Family::WallFriction => format!("re = {}, re * (1 + {})", number(x[0]), number(x[1])),
                 Family::Hindrance => {
                     format!("phi = {} and {}, re_p = {}", number(x[0]), number((x[0] + x[1]).min(0.9)), number(x[2]))
                 }
@@ -87,6 +92,10 @@ pub(super) fn declared_limit(space: &ParamSpace, family: Family, index: usize, l
                     Built::Drag(m) => {
                         let x2 = x[0] * (1.0 + x[1]);
                         (m.cd(x[0]), m.cd(x2), x[0], x2)
+                    }
+                    Built::WallFriction(m) => {
+                        let x2 = x[0] * (1.0 + x[1]);
+                        (m.friction_factor(x[0]), m.friction_factor(x2), x[0], x2)
                     }
                     Built::Hindrance(m) => {
                         let p2 = (x[0] + x[1]).min(0.9);

@@ -13,7 +13,7 @@
 //! rheology I or K in [1e-8, 1e3]; kinetic theory phi in [0, 0.999 phi_max); turbulence a
 //! 20-cell column 0.1 m high with a bed of volume fraction phi_bed; fluctuation k, omega,
 //! nu_t, the Reynolds stress, slip, response time, depth and bulk velocity in ranges of
-//! open-channel flows. Parameters are drawn one at a time within their declared ranges
+//! open-channel flows; wall friction Re in [1e-6, 1e9]. Parameters are drawn one at a time within their declared ranges
 //! (unbounded ends cut at 10 times the given value), the others at their given values; a
 //! draw that breaks a constraint between parameters is discarded.
 
@@ -348,6 +348,7 @@ fn input_names(family: Family) -> &'static [&'static str] {
         Family::Fluctuation => {
             &["k", "omega", "nu_t", "reynolds_stress", "slip", "response_time", "depth", "bulk_velocity"]
         }
+        Family::WallFriction => &["re"],
     }
 }
 
@@ -377,6 +378,7 @@ fn inputs(family: Family) -> BoxedStrategy<Vec<f64>> {
             log_uniform(1e-3, 1.0),
             log_uniform(1e-3, 5.0),
         ],
+        Family::WallFriction => vec![log_uniform(1e-6, 1e9)],
     };
     v.boxed()
 }

@@ -11,6 +11,7 @@ pub mod granular;
 pub mod hindrance;
 pub mod turbulence;
 pub mod viscosity;
+pub mod wall_friction;
 
 use std::fmt;
 
@@ -29,12 +30,21 @@ pub enum Family {
     Turbulence,
     /// fluid velocity fluctuations seen by particles, `[closures.fluctuation]`
     Fluctuation,
+    /// friction of smooth side walls on the fluid of a narrow channel, `[closures.wall_friction]`
+    WallFriction,
 }
 
 impl Family {
     /// Every family, in scene order.
-    pub const ALL: [Family; 6] =
-        [Family::Drag, Family::Hindrance, Family::Viscosity, Family::Granular, Family::Turbulence, Family::Fluctuation];
+    pub const ALL: [Family; 7] = [
+        Family::Drag,
+        Family::Hindrance,
+        Family::Viscosity,
+        Family::Granular,
+        Family::Turbulence,
+        Family::Fluctuation,
+        Family::WallFriction,
+    ];
 
     /// Key of the family's table under `[closures]`.
     pub fn key(self) -> &'static str {
@@ -45,6 +55,7 @@ impl Family {
             Family::Granular => "granular",
             Family::Turbulence => "turbulence",
             Family::Fluctuation => "fluctuation",
+            Family::WallFriction => "wall_friction",
         }
     }
 
@@ -62,6 +73,7 @@ impl Family {
             Family::Granular => "granular stress: local rheologies and frictional-collisional kinetic theory",
             Family::Turbulence => "turbulence closure: mixing length / eddy viscosity",
             Family::Fluctuation => "fluid velocity fluctuations seen by particles and their mean-field diffusivity",
+            Family::WallFriction => "friction factor of smooth side walls on the fluid of a narrow channel",
         }
     }
 }

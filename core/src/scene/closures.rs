@@ -15,10 +15,10 @@ use crate::error::{Error, Result};
 use crate::param::Describe;
 use crate::registry;
 use crate::runtime::{self, FromRuntime, RuntimeModel};
-use crate::{DragLaw, EffectiveViscosity, Fluctuation, GranularStress, Hindrance, Turbulence};
+use crate::{DragLaw, EffectiveViscosity, Fluctuation, GranularStress, Hindrance, Turbulence, WallFriction};
 
 /// The closures of a scene, one per family. Absent families take their defaults when the
-/// scene is resolved (see [`DEFAULT_MODELS`]); `granular` has no default.
+/// scene is resolved (see [`DEFAULT_MODELS`]); `granular` and `wall_friction` have no default.
 #[derive(Debug, Default, Serialize)]
 pub struct Closures {
     /// single-particle drag
@@ -34,9 +34,13 @@ pub struct Closures {
     pub turbulence: Option<Box<dyn Turbulence>>,
     /// fluid velocity fluctuations
     pub fluctuation: Option<Box<dyn Fluctuation>>,
+    /// friction of the side walls of a narrow channel on the fluid (none: the fluid does
+    /// not feel the walls)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wall_friction: Option<Box<dyn WallFriction>>,
 }
 
-/// Default model of each family (none for `granular`).
+/// Default model of each family (none for `granular` and `wall_friction`).
 pub const DEFAULT_MODELS: [(Family, &str); 5] = [
     (Family::Drag, "dallavalle"),
     (Family::Hindrance, "richardson_zaki"),
@@ -293,6 +297,9 @@ impl Closures {
         if let Some((v, k)) = take(Family::Fluctuation) {
             c.fluctuation = Some(closure_from_value(v, Family::Fluctuation, file, &k)?);
         }
+        if let Some((v, k)) = take(Family::WallFriction) {
+            c.wall_friction = Some(closure_from_value(v, Family::WallFriction, file, &k)?);
+        }
         if let Some(k) = table.keys().next() {
             let known: Vec<_> = Family::ALL.iter().map(|f| f.key()).collect();
             return Err(Error::Key {
@@ -322,13 +329,14 @@ impl Closures {
     /// The first evaluation error of a closure of the scene ([`Describe::failure`]): a
     /// closure registered at run time whose function raised during a run.
     pub fn failure(&self) -> Option<String> {
-        let each: [Option<&dyn Describe>; 6] = [
+        let each: [Option<&dyn Describe>; 7] = [
             self.drag.as_deref().map(|m| m as &dyn Describe),
             self.hindrance.as_deref().map(|m| m as &dyn Describe),
             self.viscosity.as_deref().map(|m| m as &dyn Describe),
             self.granular.as_deref().map(|m| m as &dyn Describe),
             self.turbulence.as_deref().map(|m| m as &dyn Describe),
             self.fluctuation.as_deref().map(|m| m as &dyn Describe),
+            self.wall_friction.as_deref().map(|m| m as &dyn Describe),
         ];
         each.into_iter().flatten().find_map(Describe::failure)
     }

@@ -67,25 +67,6 @@ pub enum Surface {
     Nominal,
 }
 
-/// Friction of the side walls on the fluid (`side_wall_friction`).
-#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum SideWallFriction {
-    /// the fluid does not feel the walls
-    #[default]
-    None,
-    /// the two walls are smooth: the column loses their friction, with the Graf & Altinakar
-    /// friction factor (Maurin et al. 2015 section III B; `saltus_solvers::column::side_walls`)
-    GrafAltinakar,
-}
-
-impl SideWallFriction {
-    /// No wall friction (the default, not written in a resolved scene).
-    pub fn is_none(&self) -> bool {
-        *self == SideWallFriction::None
-    }
-}
-
 /// One particle of `initial = "list"`.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -133,10 +114,6 @@ pub struct LagrangianSettings {
     pub width: Option<f64>,
     /// flat frictional walls at y = 0 and y = width instead of a periodic y
     pub side_walls: bool,
-    /// friction of the side walls on the fluid column (needs `side_walls` and a coupled
-    /// fluid): `"none"` or `"graf_altinakar"` (smooth walls)
-    #[serde(skip_serializing_if = "SideWallFriction::is_none")]
-    pub side_wall_friction: SideWallFriction,
     /// what is below the particles
     pub bottom: Bottom,
     /// z period (bottom = "periodic") or height of the box the gas fills (m)
@@ -208,7 +185,6 @@ impl Default for LagrangianSettings {
             length: None,
             width: None,
             side_walls: false,
-            side_wall_friction: SideWallFriction::None,
             bottom: Bottom::Rough,
             height: 0.0,
             initial: Initial::Bed,
@@ -295,13 +271,6 @@ impl LagrangianSettings {
             // minimum image: a particle must not meet two images of another
             check(f, &p("length"), l, ParamRange::open_closed(2.0 * cut, MAX_SIDE_DIAMETERS * d))?;
         }
-        if !self.side_wall_friction.is_none() && !self.side_walls {
-            return Err(key_error(
-                f,
-                &p("side_wall_friction"),
-                "the walls whose friction the fluid loses need side_walls = true (width is then the channel width); use side_wall_friction = \"none\" or add the walls",
-            ));
-        }
         if let Some(w) = self.width {
             let range = if self.side_walls { side } else { ParamRange::open_closed(2.0 * cut, MAX_SIDE_DIAMETERS * d) };
             check(f, &p("width"), w, range)?;
@@ -358,13 +327,6 @@ impl LagrangianSettings {
                     crate::param::number(self.stats_start),
                     crate::param::number(self.end_time)
                 ),
-            ));
-        }
-        if !self.side_wall_friction.is_none() && self.fluid != FluidMode::Coupled {
-            return Err(key_error(
-                f,
-                &p("side_wall_friction"),
-                "acts on the fluid column, which only fluid = \"coupled\" solves; use side_wall_friction = \"none\"",
             ));
         }
         let cut = c.d * (1.0 + self.skin);

@@ -28,9 +28,7 @@ use crate::param::ParamRange;
 
 pub use closures::{closure_from_value, de_concrete, granular_from_value, Closures, DEFAULT_MODELS};
 pub use domain::{Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT, MAX_STRETCH_DECADES};
-pub use lagrangian::{
-    Case, SideWallFriction, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, MAX_PARTICLES, MAX_SIDE_DIAMETERS,
-};
+pub use lagrangian::{Case, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, MAX_PARTICLES, MAX_SIDE_DIAMETERS};
 pub use overrides::{apply_override, parse_table};
 pub use solver::{
     default_elastic_phi_rlp, Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver,
@@ -316,6 +314,12 @@ impl Scene {
                         ),
                     ));
                 }
+                if self.closures.wall_friction.is_some() {
+                    return Err(key(
+                        "closures.wall_friction",
+                        "the Eulerian column has no channel width, so no side walls: only the lagrangian solver with solver.lagrangian.side_walls = true takes the walls' friction".into(),
+                    ));
+                }
                 let phi_max = self.closures.max_packing().ok_or_else(|| {
                     key(
                         "closures.granular",
@@ -366,6 +370,21 @@ impl Scene {
                         "`lid` and `symmetry` bound the fluid column: they need solver.lagrangian.fluid = \"coupled\""
                             .into(),
                     ));
+                }
+                // the walls' friction is felt by the fluid column between two walls
+                if self.closures.wall_friction.is_some() {
+                    if !self.solver.lagrangian.side_walls {
+                        return Err(key(
+                            "closures.wall_friction",
+                            "the walls whose friction the fluid loses need solver.lagrangian.side_walls = true (width is then the channel width); remove [closures.wall_friction] or add the walls".into(),
+                        ));
+                    }
+                    if self.solver.lagrangian.fluid != FluidMode::Coupled {
+                        return Err(key(
+                            "closures.wall_friction",
+                            "acts on the fluid column, which only solver.lagrangian.fluid = \"coupled\" solves; remove [closures.wall_friction]".into(),
+                        ));
+                    }
                 }
                 if self.domain.top == Top::Lid
                     && self.closures.turbulence.as_ref().is_some_and(|t| !t.transported().is_empty())

@@ -1,7 +1,7 @@
 //! Streamwise fluid momentum of the column: [`FluidColumn`].
 
 use saltus_core::closure::turbulence::TwoEquation;
-use saltus_core::{ColumnView, Turbulence};
+use saltus_core::{ColumnView, Turbulence, WallFriction};
 
 use super::operator::ColumnOperator;
 use super::params::{Closures, ColumnParams, Coupling, SteadyReport, TopBoundary};
@@ -242,7 +242,7 @@ impl FluidColumn {
         }
         self.load_inputs(coupling, closures)?;
         self.evaluate_turbulence(closures.turbulence)?;
-        self.update_side_walls();
+        self.update_side_walls(closures.wall_friction);
         // the one relaxation policy of the column (also the Eulerian solver's)
         self.eddy.relax(self.fresh);
         self.fresh = false;
@@ -277,12 +277,12 @@ impl FluidColumn {
     ) -> Result<SteadyReport, ColumnError> {
         self.load_inputs(coupling, closures)?;
         if let Some(model) = closures.turbulence.as_two_equation() {
-            return self.solve_steady_two_equation(model, closures.turbulence, tol, max_iter);
+            return self.solve_steady_two_equation(model, closures, tol, max_iter);
         }
         let mut it = 0;
         loop {
             self.evaluate_turbulence(closures.turbulence)?;
-            self.update_side_walls();
+            self.update_side_walls(closures.wall_friction);
             // nu_t <- nu_t(u), keeping the previous one
             self.eddy.take_candidate();
             self.update_coefficients();
@@ -308,7 +308,7 @@ impl FluidColumn {
     fn solve_steady_two_equation(
         &mut self,
         model: &dyn TwoEquation,
-        turbulence: &dyn Turbulence,
+        closures: &Closures<'_>,
         tol: f64,
         max_iter: usize,
     ) -> Result<SteadyReport, ColumnError> {
@@ -317,8 +317,8 @@ impl FluidColumn {
         let mut change = f64::INFINITY;
         let mut it = 0;
         loop {
-            self.evaluate_turbulence(turbulence)?;
-            self.update_side_walls();
+            self.evaluate_turbulence(closures.turbulence)?;
+            self.update_side_walls(closures.wall_friction);
             self.eddy.take_candidate();
             self.update_coefficients();
             self.update_stresses();
@@ -331,7 +331,7 @@ impl FluidColumn {
             }
             self.solve_linear(f64::INFINITY, self.time)?;
             self.update_faces();
-            let kw = self.kw.as_mut().ok_or(ColumnError::Unsupported { model: turbulence.name() })?;
+            let kw = self.kw.as_mut().ok_or(ColumnError::Unsupported { model: closures.turbulence.name() })?;
             kw.col.save();
             self.advance_two_equation(model, dt, self.time)?;
             if let Some(kw) = &self.kw {
@@ -457,13 +457,13 @@ impl FluidColumn {
     }
 
     /// gamma_w of the side walls from the current velocity and phi (nothing without walls).
-    fn update_side_walls(&mut self) {
-        let Some(walls) = self.params.side_walls else { return };
+    fn update_side_walls(&mut self, friction: Option<&dyn WallFriction>) {
+        let (Some(walls), Some(friction)) = (self.params.side_walls, friction) else { return };
         let n = self.u.len();
         if self.wall.len() != n {
             self.wall.resize(n, 0.0);
         }
-        walls.coefficients(self.params.density, self.params.viscosity, &self.phi, &self.u, &mut self.wall);
+        walls.coefficients(friction, self.params.density, self.params.viscosity, &self.phi, &self.u, &mut self.wall);
     }
 
     /// Candidate nu_t from the current shear rate.

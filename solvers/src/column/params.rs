@@ -1,6 +1,6 @@
 //! Parameters, closures, coupling inputs and steady report of a [`super::FluidColumn`].
 
-use saltus_core::{EffectiveViscosity, Turbulence};
+use saltus_core::{EffectiveViscosity, Turbulence, WallFriction};
 
 use super::side_walls::SideWalls;
 use super::ColumnError;
@@ -50,8 +50,9 @@ pub struct ColumnParams {
     /// fully turbulent mixing-length layer (nu_t <- C / nu_t, which oscillates with
     /// omega = 1) into a Newton (Babylonian) iteration.
     pub relaxation: f64,
-    /// friction of two smooth lateral walls on the fluid (quasi-2D channel, Maurin et al.
-    /// 2015 section III B; [`super::side_walls`]); `None`: no walls
+    /// two smooth lateral walls of a quasi-2D channel (Maurin et al. 2015 section III B;
+    /// [`super::side_walls`]), whose friction the fluid loses with the friction factor of
+    /// [`Closures::wall_friction`]; `None`: no walls
     #[serde(default)]
     pub side_walls: Option<SideWalls>,
 }
@@ -83,6 +84,9 @@ pub struct Closures<'a> {
     /// eddy viscosity nu_t: an algebraic closure, or a two-equation one (k-omega) whose k
     /// and omega the column then allocates (first step) and advances
     pub turbulence: &'a dyn Turbulence,
+    /// friction factor of the side walls ([`ColumnParams::side_walls`]); `None`: the fluid
+    /// does not feel the walls
+    pub wall_friction: Option<&'a dyn WallFriction>,
 }
 
 /// Per-cell coupling with the particle phase, supplied by the caller every step (all

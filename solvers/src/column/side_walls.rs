@@ -24,37 +24,22 @@
 //! lagged (from the velocity at the start of the step, or the current iterate of the
 //! steady solve), u implicit.
 //!
-//! # Friction factor of the smooth walls
+//! # Friction factor of the walls
 //!
-//! Turbulent: the smooth-wall resistance law of Graf & Altinakar (1998),
-//! 1/sqrt(f) = 2 log10(Re sqrt(f) / 4) + 0.32 (Prandtl-Karman form), solved exactly for
-//! f (Newton on ln(1/sqrt f), where the law is convex and monotone). The Reynolds number
-//! is built on the width, Re = |u| W / nu_f, as in the implementation of the paper's
-//! authors (Yade's `HydroForceEngine`, `fluidWallFriction`, `wallFrictionModel = 1`),
-//! which writes the law in this form; we could not read the textbook itself. Over the
-//! range of the Frey flume (u = 0.4-1 m/s in a 6.5 mm channel, Re = 2600-6500) it gives
-//! f = 0.036-0.047, within 7 % of Blasius' smooth-wall law 0.3164 Re^-1/4 (test
-//! `friction_factor_agrees_with_blasius_in_its_range`, 3e3 <= Re <= 1e5).
-//!
-//! Laminar: below Re = [`RE_LAMINAR`], f = 48 / Re, the exact plane-Poiseuille wall
-//! stress 6 mu U / W between two plates a distance W apart (in Darcy form with the
-//! hydraulic diameter 2W, f = 96 / Re_Dh). The switch is where the two laws cross, so f
-//! is continuous; the transitional regime is not modelled. In the laminar range
-//! gamma_w = 12 eps mu_f / W^2 does not depend on u: the column's equation is then the
-//! Brinkman (Hele-Shaw) equation of a slot, with a closed-form solution
-//! (test `laminar_slot_matches_the_brinkman_profile`).
+//! The friction factor is a closure of the family `wall_friction` (`[closures.wall_friction]`,
+//! e.g. `graf_altinakar`), which gives the Poiseuille number f Re: the walls' coefficient is
+//! then gamma_w = eps rho_f nu_f (f Re) / (4 W^2), finite at rest. With the laminar law
+//! f Re = 48, gamma_w = 12 eps mu_f / W^2 does not depend on u and the column's equation is
+//! the Brinkman (Hele-Shaw) equation of a slot, with a closed-form solution (test
+//! `laminar_slot_matches_the_brinkman_profile`).
 //!
 //! Valid range: smooth walls (glass, perspex) of a channel of width W a few grains wide or
 //! less, where the flow between the walls is the same at every y (quasi-2D). Wider
 //! channels make the term small (gamma_w ~ 1/W): W -> infinity recovers the column
 //! without walls.
 
+use saltus_core::WallFriction;
 use serde::{Deserialize, Serialize};
-
-/// Reynolds number |u| W / nu_f below which the wall friction factor is the laminar
-/// 48 / Re: where 48 / Re equals the Graf-Altinakar law (to 1e-9, test
-/// `friction_factor_is_continuous_at_the_switch`).
-pub const RE_LAMINAR: f64 = 617.970_325_458_568;
 
 /// Two smooth lateral walls a distance `width` apart (Maurin et al. 2015 section III B).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -63,44 +48,28 @@ pub struct SideWalls {
     pub width: f64,
 }
 
-/// Darcy-Weisbach friction factor of a smooth wall at Re = |u| W / nu_f: 48 / Re up to
-/// [`RE_LAMINAR`], else the root of 1/sqrt(f) = 2 log10(Re sqrt(f) / 4) + 0.32
-/// (Graf & Altinakar 1998). Infinite at Re = 0 (the laminar wall stress stays finite:
-/// see [`SideWalls::coefficients`]).
-pub fn friction_factor(re: f64) -> f64 {
-    if re <= RE_LAMINAR {
-        return 48.0 / re;
-    }
-    // with y = ln(1/sqrt f): e^y + a y = c, a = 2 / ln 10, c = a ln(Re / 4) + 0.32,
-    // convex and increasing in y: Newton converges from any start (monotonically after
-    // the first step)
-    let a = 2.0 / std::f64::consts::LN_10;
-    let c = a * (0.25 * re).ln() + 0.32;
-    let mut y = c.max(1.0).ln();
-    for _ in 0..60 {
-        let e = y.exp();
-        let step = (e + a * y - c) / (e + a);
-        y -= step;
-        if step.abs() <= 1e-15 * y.abs().max(1.0) {
-            break;
-        }
-    }
-    (-2.0 * y).exp()
-}
-
 impl SideWalls {
     /// gamma_w per cell (kg m^-3 s^-1) into `out`: the walls remove gamma_w u per unit
-    /// volume, gamma_w = (1 - phi) rho_f f(Re) |u| / (4 W), Re = |u| W / nu_f; in the
-    /// laminar range 12 (1 - phi) rho_f nu_f / W^2 (the same value, written without the
-    /// 0 / 0 at rest).
-    pub fn coefficients(&self, density: f64, viscosity: f64, phi: &[f64], u: &[f64], out: &mut [f64]) {
+    /// volume, gamma_w = (1 - phi) rho_f nu_f (f Re) / (4 W^2) with the Poiseuille number
+    /// f Re of `friction` at Re = |u| W / nu_f (= (1 - phi) rho_f f |u| / (4 W), written
+    /// without the 0 / 0 at rest).
+    pub fn coefficients(
+        &self,
+        friction: &dyn WallFriction,
+        density: f64,
+        viscosity: f64,
+        phi: &[f64],
+        u: &[f64],
+        out: &mut [f64],
+    ) {
         let w = self.width;
-        let laminar = 12.0 * density * viscosity / (w * w);
-        for ((g, &p), &ui) in out.iter_mut().zip(phi).zip(u) {
-            let speed = ui.abs();
-            let re = speed * w / viscosity;
-            let per_eps = if re <= RE_LAMINAR { laminar } else { density * friction_factor(re) * speed / (4.0 * w) };
-            *g = (1.0 - p) * per_eps;
+        for (o, &ui) in out.iter_mut().zip(u) {
+            *o = ui.abs() * w / viscosity;
+        }
+        friction.poiseuille_batch(out);
+        let scale = density * viscosity / (4.0 * w * w);
+        for (g, &p) in out.iter_mut().zip(phi) {
+            *g *= (1.0 - p) * scale;
         }
     }
 }

@@ -185,7 +185,11 @@ impl<'a> Lagrangian<'a> {
                     scene.physics.gravity * scene.physics.slope + scene.physics.pressure_gradient / scene.fluid.density,
                     cfg.domain.water_depth,
                 )),
-                side_walls: (!s.numerics.side_wall_friction.is_none())
+                // the scene is refused at load with a wall friction and no walls
+                side_walls: scene
+                    .closures
+                    .wall_friction
+                    .is_some()
                     .then_some(crate::column::SideWalls { width: cfg.domain.width }),
             };
             column_params = Some(params);
@@ -379,7 +383,11 @@ impl<'a> Lagrangian<'a> {
         let tau_f = self.cfg.settings.numerics.fluid_period;
         if let Some(col) = self.column.as_mut() {
             let coupling = Coupling { phi: &self.field.phi, beta: &self.beta, u_p: &self.u_p };
-            let closures = Closures { viscosity: self.viscosity, turbulence: self.turbulence };
+            let closures = Closures {
+                viscosity: self.viscosity,
+                turbulence: self.turbulence,
+                wall_friction: self.scene.closures.wall_friction.as_deref(),
+            };
             if let Err(e) = col.step(tau_f, &coupling, &closures) {
                 return Err(Breakdown {
                     time: self.time,
