@@ -319,3 +319,10 @@ fn read_array(text: &str, name: &str) -> Vec<f64> {
 fn read_u8(text: &str, name: &str) -> Vec<u8> {
     read_bytes(text, name)
 }
+
+#[test]
+fn an_unknown_drag_velocity_is_refused_naming_the_allowed_ones() {
+    let set = ["solver.lagrangian.drag_velocity=\"middle\""];
+    let err = refused("robust_drag_velocity", BED, &set, "solver.lagrangian.drag_velocity");
+    assert!(err.contains("scene.toml") && err.contains("`centre`") && err.contains("`sphere_average`"), "{err}");
+}

@@ -86,6 +86,29 @@ impl SideWallFriction {
     }
 }
 
+/// The fluid velocity the DEM drag of a grain sees (`drag_velocity`), and with it the
+/// momentum exchange with the column (`saltus_solvers::lagrangian::averaging`).
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum DragVelocity {
+    /// the column velocity at the grain's centre (Maurin et al. 2015 eq 11, as the
+    /// reference YADE code), the column taking beta = n <f_D> / (u_f - <v>) (eq 18) with the
+    /// linear coefficient where that quotient is refused
+    #[default]
+    Centre,
+    /// the column velocity averaged over the grain with the slice volumes of the
+    /// averaging (its transpose), the column taking each grain's drag linearised grain by
+    /// grain: exact, implicit, nothing refused
+    SphereAverage,
+}
+
+impl DragVelocity {
+    /// The velocity at the centre (the default, not written in a resolved scene).
+    pub fn is_centre(&self) -> bool {
+        *self == DragVelocity::Centre
+    }
+}
+
 /// One particle of `initial = "list"`.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -170,6 +193,10 @@ pub struct LagrangianSettings {
     pub skin: f64,
     /// fluid coupling
     pub fluid: FluidMode,
+    /// fluid velocity of the drag: `"centre"` (Maurin 2015 eq 11) or `"sphere_average"`
+    /// (over the grain's slices, with the exact implicit exchange)
+    #[serde(skip_serializing_if = "DragVelocity::is_centre")]
+    pub drag_velocity: DragVelocity,
     /// fluid resolution period tau_f (s)
     pub fluid_period: f64,
     /// deposition time before the flow starts, fluid at rest (s); default three
@@ -222,6 +249,7 @@ impl Default for LagrangianSettings {
             dt_safety: 0.05,
             skin: 0.1,
             fluid: FluidMode::Coupled,
+            drag_velocity: DragVelocity::Centre,
             fluid_period: 1.0e-2,
             settle_time: None,
             stats_start: 0.0,

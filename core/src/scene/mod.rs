@@ -29,7 +29,7 @@ use crate::param::ParamRange;
 pub use closures::{closure_from_value, de_concrete, granular_from_value, Closures, DEFAULT_MODELS};
 pub use domain::{Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT, MAX_STRETCH_DECADES};
 pub use lagrangian::{
-    Case, SideWallFriction, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, MAX_PARTICLES, MAX_SIDE_DIAMETERS,
+    Case, DragVelocity, SideWallFriction, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, MAX_PARTICLES, MAX_SIDE_DIAMETERS,
 };
 pub use overrides::{apply_override, parse_table};
 pub use solver::{
