@@ -92,7 +92,7 @@ impl SideWallFriction {
 #[serde(rename_all = "snake_case")]
 pub enum DragVelocity {
     /// the column velocity at the grain's centre (Maurin et al. 2015 eq 11, as the
-    /// reference YADE code), the column taking beta = n <f_D> / (u_f - <v>) (eq 18) with the
+    /// reference YADE code), the column taking beta = n `<f_D>` / (u_f - `<v>`) (eq 18) with the
     /// linear coefficient where that quotient is refused
     #[default]
     Centre,
