@@ -326,3 +326,11 @@ fn an_unknown_drag_velocity_is_refused_naming_the_allowed_ones() {
     let err = refused("robust_drag_velocity", BED, &set, "solver.lagrangian.drag_velocity");
     assert!(err.contains("scene.toml") && err.contains("`centre`") && err.contains("`sphere_average`"), "{err}");
 }
+
+#[test]
+fn a_size_dispersion_is_refused_beyond_the_lattice_or_without_a_deposited_bed() {
+    let key = "solver.lagrangian.size_dispersion";
+    refused("robust_dispersion_range", BED, &["solver.lagrangian.size_dispersion=0.2"], key);
+    let err = refused("robust_dispersion_list", LIST, &["solver.lagrangian.size_dispersion=0.05"], key);
+    assert!(err.contains("initial = \"bed\""), "{err}");
+}

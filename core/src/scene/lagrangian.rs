@@ -137,6 +137,9 @@ pub const MAX_PARTICLES: f64 = 1.0e7;
 pub const MAX_SIDE_DIAMETERS: f64 = 1.0e4;
 /// Packing of the released lattice of `initial = "bed"` (cubic, spacing 1.1 d).
 const LATTICE_PHI: f64 = std::f64::consts::PI / 6.0 / (1.1 * 1.1 * 1.1);
+/// Largest `size_dispersion`: the largest grain, (1 + s) d, stays below the released
+/// lattice's spacing of 1.1 d.
+pub const MAX_SIZE_DISPERSION: f64 = 0.09;
 /// Free-fall times of the released lattice in the default settle time.
 const SETTLE_FALLS: f64 = 3.0;
 
@@ -170,6 +173,11 @@ pub struct LagrangianSettings {
     /// `gas_phi` (gas)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub particles: Option<usize>,
+    /// size dispersion s of a deposited bed (`initial = "bed"`): the diameters of the
+    /// released grains (the rough layer's among them) drawn uniformly in [(1 - s) d, (1 + s) d] (Fry et al. 2024 section II C: 5 % "to avoid
+    /// crystallization"); 0: monodisperse (not written then)
+    #[serde(skip_serializing_if = "super::tables::is_zero")]
+    pub size_dispersion: f64,
     /// thickness of the fixed rough layer, in particle diameters
     pub rough_layer: f64,
     /// cells of the DEM's fluid column over bed_height + water_depth; default cells of
@@ -240,6 +248,7 @@ impl Default for LagrangianSettings {
             height: 0.0,
             initial: Initial::Bed,
             particles: None,
+            size_dispersion: 0.0,
             rough_layer: 1.0,
             cells: None,
             surface: Surface::Deposit,
@@ -336,6 +345,8 @@ impl LagrangianSettings {
         }
         check(f, &p("height"), self.height, ParamRange::closed(0.0, MAX_SIDE_DIAMETERS * d))?;
         check(f, &p("rough_layer"), self.rough_layer, ParamRange::closed(0.5, 10.0))?;
+        // the largest grain must fit the released lattice's spacing of 1.1 d
+        check(f, &p("size_dispersion"), self.size_dispersion, ParamRange::closed(0.0, MAX_SIZE_DISPERSION))?;
         if let Some(n) = self.cells {
             check(f, &p("cells"), n as f64, ParamRange::closed(2.0, 1_000_000.0))?;
         }
@@ -405,6 +416,13 @@ impl LagrangianSettings {
                     "a z-periodic box has no fluid column; use fluid = \"off\" or \"still\"",
                 ));
             }
+        }
+        if self.size_dispersion > 0.0 && self.initial != Initial::Bed {
+            return Err(key_error(
+                f,
+                &p("size_dispersion"),
+                "draws the diameters of a deposited bed only; use initial = \"bed\" or size_dispersion = 0",
+            ));
         }
         let volume = std::f64::consts::PI * c.d.powi(3) / 6.0;
         let count = |height: f64, phi: f64| phi * length * width * height / volume;
