@@ -319,3 +319,18 @@ fn read_array(text: &str, name: &str) -> Vec<f64> {
 fn read_u8(text: &str, name: &str) -> Vec<u8> {
     read_bytes(text, name)
 }
+
+#[test]
+fn an_unknown_drag_velocity_is_refused_naming_the_allowed_ones() {
+    let set = ["solver.lagrangian.drag_velocity=\"middle\""];
+    let err = refused("robust_drag_velocity", BED, &set, "solver.lagrangian.drag_velocity");
+    assert!(err.contains("scene.toml") && err.contains("`centre`") && err.contains("`sphere_average`"), "{err}");
+}
+
+#[test]
+fn a_size_dispersion_is_refused_beyond_the_lattice_or_without_a_deposited_bed() {
+    let key = "solver.lagrangian.size_dispersion";
+    refused("robust_dispersion_range", BED, &["solver.lagrangian.size_dispersion=0.2"], key);
+    let err = refused("robust_dispersion_list", LIST, &["solver.lagrangian.size_dispersion=0.05"], key);
+    assert!(err.contains("initial = \"bed\""), "{err}");
+}

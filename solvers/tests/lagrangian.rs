@@ -201,7 +201,8 @@ fn coupled_run_is_bit_identical_on_one_and_two_threads() {
 #[test]
 fn coupled_run_keeps_its_particles_and_dephases_the_eddies() {
     // (the momentum transfer of beta, Maurin eq 18, is the property test
-    // lagrangian::averaging::tests::beta_transfers_the_particle_drag)
+    // lagrangian::averaging::tests::the_fluid_at_the_velocity_the_grains_saw_loses_exactly_their_drag,
+    // and the run-level balance is tests/coupling.rs)
     let s = small_bed(&[]);
     let mut m = model(&s);
     m.deposit().expect("deposition");

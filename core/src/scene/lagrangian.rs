@@ -67,6 +67,29 @@ pub enum Surface {
     Nominal,
 }
 
+/// The fluid velocity the DEM drag of a grain sees (`drag_velocity`), and with it the
+/// momentum exchange with the column (`saltus_solvers::lagrangian::averaging`).
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum DragVelocity {
+    /// the column velocity at the grain's centre (Maurin et al. 2015 eq 11, as the
+    /// reference YADE code), the column taking beta = n `<f_D>` / (u_f - `<v>`) (eq 18) with the
+    /// linear coefficient where that quotient is refused
+    #[default]
+    Centre,
+    /// the column velocity averaged over the grain with the slice volumes of the
+    /// averaging (its transpose), the column taking each grain's drag linearised grain by
+    /// grain: exact, implicit, nothing refused
+    SphereAverage,
+}
+
+impl DragVelocity {
+    /// The velocity at the centre (the default, not written in a resolved scene).
+    pub fn is_centre(&self) -> bool {
+        *self == DragVelocity::Centre
+    }
+}
+
 /// One particle of `initial = "list"`.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -95,6 +118,9 @@ pub const MAX_PARTICLES: f64 = 1.0e7;
 pub const MAX_SIDE_DIAMETERS: f64 = 1.0e4;
 /// Packing of the released lattice of `initial = "bed"` (cubic, spacing 1.1 d).
 const LATTICE_PHI: f64 = std::f64::consts::PI / 6.0 / (1.1 * 1.1 * 1.1);
+/// Largest `size_dispersion`: the largest grain, (1 + s) d, stays below the released
+/// lattice's spacing of 1.1 d.
+pub const MAX_SIZE_DISPERSION: f64 = 0.09;
 /// Free-fall times of the released lattice in the default settle time.
 const SETTLE_FALLS: f64 = 3.0;
 
@@ -124,6 +150,11 @@ pub struct LagrangianSettings {
     /// `gas_phi` (gas)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub particles: Option<usize>,
+    /// size dispersion s of a deposited bed (`initial = "bed"`): the diameters of the
+    /// released grains (the rough layer's among them) drawn uniformly in [(1 - s) d, (1 + s) d] (Fry et al. 2024 section II C: 5 % "to avoid
+    /// crystallization"); 0: monodisperse (not written then)
+    #[serde(skip_serializing_if = "super::tables::is_zero")]
+    pub size_dispersion: f64,
     /// thickness of the fixed rough layer, in particle diameters
     pub rough_layer: f64,
     /// cells of the DEM's fluid column over bed_height + water_depth; default cells of
@@ -147,6 +178,10 @@ pub struct LagrangianSettings {
     pub skin: f64,
     /// fluid coupling
     pub fluid: FluidMode,
+    /// fluid velocity of the drag: `"centre"` (Maurin 2015 eq 11) or `"sphere_average"`
+    /// (over the grain's slices, with the exact implicit exchange)
+    #[serde(skip_serializing_if = "DragVelocity::is_centre")]
+    pub drag_velocity: DragVelocity,
     /// fluid resolution period tau_f (s)
     pub fluid_period: f64,
     /// deposition time before the flow starts, fluid at rest (s); default three
@@ -189,6 +224,7 @@ impl Default for LagrangianSettings {
             height: 0.0,
             initial: Initial::Bed,
             particles: None,
+            size_dispersion: 0.0,
             rough_layer: 1.0,
             cells: None,
             surface: Surface::Deposit,
@@ -198,6 +234,7 @@ impl Default for LagrangianSettings {
             dt_safety: 0.05,
             skin: 0.1,
             fluid: FluidMode::Coupled,
+            drag_velocity: DragVelocity::Centre,
             fluid_period: 1.0e-2,
             settle_time: None,
             stats_start: 0.0,
@@ -277,6 +314,8 @@ impl LagrangianSettings {
         }
         check(f, &p("height"), self.height, ParamRange::closed(0.0, MAX_SIDE_DIAMETERS * d))?;
         check(f, &p("rough_layer"), self.rough_layer, ParamRange::closed(0.5, 10.0))?;
+        // the largest grain must fit the released lattice's spacing of 1.1 d
+        check(f, &p("size_dispersion"), self.size_dispersion, ParamRange::closed(0.0, MAX_SIZE_DISPERSION))?;
         if let Some(n) = self.cells {
             check(f, &p("cells"), n as f64, ParamRange::closed(2.0, 1_000_000.0))?;
         }
@@ -339,6 +378,13 @@ impl LagrangianSettings {
                     "a z-periodic box has no fluid column; use fluid = \"off\" or \"still\"",
                 ));
             }
+        }
+        if self.size_dispersion > 0.0 && self.initial != Initial::Bed {
+            return Err(key_error(
+                f,
+                &p("size_dispersion"),
+                "draws the diameters of a deposited bed only; use initial = \"bed\" or size_dispersion = 0",
+            ));
         }
         let volume = std::f64::consts::PI * c.d.powi(3) / 6.0;
         let count = |height: f64, phi: f64| phi * length * width * height / volume;

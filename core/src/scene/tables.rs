@@ -284,7 +284,7 @@ pub struct Reference {
     pub z_offset: f64,
 }
 
-fn is_zero(x: &f64) -> bool {
+pub(super) fn is_zero(x: &f64) -> bool {
     *x == 0.0
 }
 

@@ -143,6 +143,7 @@ impl Lagrangian<'_> {
         self.dem = s.dem;
         self.forces = s.forces;
         self.field = s.field;
+        self.field.refresh();
         self.column = s.column;
         self.sums = s.sums;
         (self.phi, self.u_p, self.beta, self.tau_t) = (phi, u_p, beta, tau_t);

@@ -6,7 +6,7 @@
 
 use std::borrow::Cow;
 
-use super::averaging::CellSums;
+use super::averaging::{CellSums, Seen};
 use super::config::{Bottom, FluidMode, Surface};
 use super::drag::{FluidField, FluidForces};
 use super::setup;
@@ -85,7 +85,8 @@ impl Lagrangian<'_> {
         let d = self.mat.d;
         let dz = self.field.dz;
         let n = self.sums.vol.len();
-        self.sums.accumulate(&self.dem.p, self.field.base, dz, &self.forces.k, &self.forces.urx);
+        // only the volumes are read: either exchange would do
+        self.sums.accumulate(&self.dem.p, self.field.base, dz, &self.forces.k, &self.forces.urx, Seen::Centre);
         let w = ((d / dz).round() as usize).max(1);
         // running sums: a window of w cells per cell would cost cells * d / dz, 1e11
         // operations for a million cells

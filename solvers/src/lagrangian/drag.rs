@@ -1,6 +1,7 @@
-//! Fluid force on each particle: drag with the column velocity at the particle centre
-//! plus the fluctuation closure's stochastic velocity (Maurin et al. 2015 eqs 11-12,
-//! 15-16; Chassagne et al. 2023 eq 2.26).
+//! Fluid force on each particle: drag with the column velocity at the particle centre or
+//! averaged over the particle (`solver.lagrangian.drag_velocity`) plus the fluctuation
+//! closure's stochastic velocity (Maurin et al. 2015 eqs 11-12, 15-16; Chassagne et al.
+//! 2023 eq 2.26).
 //!
 //! ```text
 //! F_D = (1/2) rho_f (pi d^2 / 4) f(phi, Re_p) C_D(Re*) |u_r| u_r,
@@ -8,10 +9,16 @@
 //! ```
 //!
 //! written F_D = k_p u_r with k_p = (pi/8) rho_f nu_f d C_D(Re*) Re_p f, finite as
-//! |u_r| -> 0. u_f(z) is the column velocity interpolated linearly between cell centres
-//! (0 at the column bottom and below it, the top cell's value above the last centre); phi is the volume
-//! fraction of the cell holding the centre (as Maurin's implementation). Buoyancy is part
-//! of the body force ([`super::setup::body_acceleration`]).
+//! |u_r| -> 0. u_f(z_p) is, with `drag_velocity = "centre"` (the default, Maurin eq 11 as
+//! the reference YADE code), the column velocity at the centre interpolated linearly
+//! between cell centres (0 at the column bottom and below it, the top cell's value above
+//! the last centre); with `"sphere_average"`, the column velocity averaged over the sphere
+//! with the slice volumes of the averaging, sum_c (V_pc / V_p) u_c
+//! ([`FluidField::sphere_velocity`]: the centre value for a profile linear across the
+//! grain; parts outside the column see the fluid at rest), so that the exchange of
+//! `averaging.rs` hands the fluid exactly the grains' drag. phi is the volume fraction of
+//! the cell holding the centre (as Maurin's implementation). Buoyancy is part of the body
+//! force ([`super::setup::body_acceleration`]).
 //!
 //! The closures are called once per chunk of particles through their batch methods
 //! (C_D over Re*, f over (phi, Re_p)); Re* = c(phi) Re_p with c the ratio of the
@@ -29,12 +36,17 @@
 
 use rand::Rng as _;
 use saltus_core::rng::{stream, Rng};
+use saltus_core::scene::DragVelocity;
 use saltus_core::{DragLaw, FlowScales, Fluctuation, Hindrance, ParticleSlip, TurbulencePoint};
 
 use rayon::prelude::*;
 
 use super::dem::CHUNK;
 use super::particles::Particles;
+
+/// Largest column height, in grain radii, for which [`FluidField::sphere_velocity`] uses
+/// the moments of the column (case 1: 63, Fry's Couette: 41).
+pub const MOMENT_SPAN: f64 = 80.0;
 
 /// Fluid fields the particles see, on the column's cells (uniform grid from z = `base`).
 #[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
@@ -62,6 +74,10 @@ pub struct FluidField {
     pub hindrance: Vec<f64>,
     /// water depth and bulk velocity for the eddy turnover time
     pub scales: FlowScales,
+    /// int_0^{j dz} u z^m dz at the faces j = 0..=n, m = 0, 1, 2: derived from `u` by
+    /// [`Self::refresh`] (not saved; a restored field is refreshed)
+    #[serde(skip)]
+    moments: [Vec<f64>; 3],
 }
 
 impl FluidField {
@@ -78,7 +94,45 @@ impl FluidField {
             re_ratio: vec![1.0; n],
             hindrance: Vec::new(),
             scales: FlowScales::default(),
+            moments: [vec![0.0; n + 1], vec![0.0; n + 1], vec![0.0; n + 1]],
         }
+    }
+
+    /// Set the cell velocities and the moments [`Self::sphere_velocity`] reads.
+    pub fn set_velocity(&mut self, u: &[f64]) {
+        self.u.copy_from_slice(u);
+        self.refresh();
+    }
+
+    /// Recompute the moments of `u` (after `u` was written directly, or restored).
+    pub fn refresh(&mut self) {
+        let dz = self.dz;
+        let mut acc = [0.0; 3];
+        for m in &mut self.moments {
+            m.clear();
+            m.push(0.0);
+        }
+        for (c, &u) in self.u.iter().enumerate() {
+            let (lo, hi) = (c as f64 * dz, (c + 1) as f64 * dz);
+            acc[0] += u * (hi - lo);
+            acc[1] += u * (hi * hi - lo * lo) / 2.0;
+            acc[2] += u * (hi * hi * hi - lo * lo * lo) / 3.0;
+            for (m, a) in self.moments.iter_mut().zip(acc) {
+                m.push(a);
+            }
+        }
+    }
+
+    /// int_0^h u z^m dz, m = 0, 1, 2, h from the column bottom (u = 0 outside the column).
+    #[inline]
+    fn integrals(&self, h: f64) -> [f64; 3] {
+        let n = self.u.len();
+        let h = h.clamp(0.0, n as f64 * self.dz);
+        // h >= 0 (or NaN, cast to 0): truncation is the floor
+        let c = ((h / self.dz) as usize).min(n - 1);
+        let (lo, u) = (c as f64 * self.dz, self.u[c]);
+        let [m0, m1, m2] = &self.moments;
+        [m0[c] + u * (h - lo), m1[c] + u * (h * h - lo * lo) / 2.0, m2[c] + u * (h * h * h - lo * lo * lo) / 3.0]
     }
 
     /// Cell holding height z (clamped to the column).
@@ -113,6 +167,45 @@ impl FluidField {
         let w = s - k as f64;
         self.u[k] + w * (self.u[k + 1] - self.u[k])
     }
+
+    /// The fluid velocity the drag of a grain of centre height z and radius r sees:
+    /// [`Self::velocity`] at its centre or [`Self::sphere_velocity`] over it.
+    #[inline]
+    pub fn seen(&self, mode: DragVelocity, z: f64, r: f64) -> f64 {
+        match mode {
+            DragVelocity::Centre => self.velocity(z),
+            DragVelocity::SphereAverage => self.sphere_velocity(z, r),
+        }
+    }
+
+    /// Mean fluid velocity over the sphere of centre height z and radius r,
+    /// sum_c (V_pc / V_p) u_c with the slice volumes of the averaging
+    /// ([`super::averaging::sphere_slices`]): the velocity the grains' drag sees. Being the
+    /// transpose of the slice averaging, it makes the exchange hand the fluid exactly the
+    /// grains' drag (see `averaging.rs`). Parts of the sphere outside the column see a
+    /// fluid at rest (the no-slip bottom; the exchange drops them too).
+    ///
+    /// In O(1) from the moments: V_p ubar = pi int u(z') (r^2 - (z' - z)^2) dz' over the
+    /// sphere, the slice volumes being the integrals of its cross-section pi (r^2 -
+    /// (z' - z)^2); equal to the sum over the slices up to rounding.
+    ///
+    /// The moments are global, so their differences lose about (H / r)^3 of the float's
+    /// precision (H the column height): above H = [`MOMENT_SPAN`] r (3e-11 of the velocity
+    /// at worst) the sum runs over the slices instead.
+    #[inline]
+    pub fn sphere_velocity(&self, z: f64, r: f64) -> f64 {
+        let z = z - self.base;
+        let n = self.u.len();
+        if self.moments[0].len() != n + 1 || n as f64 * self.dz > MOMENT_SPAN * r {
+            // moments not refreshed since `u` changed size, or too coarse for this grain
+            let mut sum = 0.0;
+            super::averaging::sphere_slices(z, r, self.u.len(), self.dz, |c, w| sum += w * self.u[c]);
+            return sum / (4.0 / 3.0 * std::f64::consts::PI * r * r * r);
+        }
+        let (a, b) = (self.integrals(z - r), self.integrals(z + r));
+        let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        ((r * r - z * z) * d[0] + 2.0 * z * d[1] - d[2]) / (4.0 / 3.0 * r * r * r)
+    }
 }
 
 /// The closures of the fluid force.
@@ -124,6 +217,8 @@ pub struct DragModels<'a> {
     pub hindrance: &'a dyn Hindrance,
     /// fluctuations, `None` when inactive
     pub fluctuation: Option<&'a dyn Fluctuation>,
+    /// the fluid velocity the drag sees
+    pub velocity: DragVelocity,
 }
 
 /// Per-particle drag state and work arrays (all particles, fixed ones included: the
@@ -269,7 +364,8 @@ impl FluidForces {
                             };
                         }
                     }
-                    let u = [field.velocity(z) + fluct[i][0] - p.vx[a], fluct[i][1] - p.vy[a], fluct[i][2] - p.vz[a]];
+                    let uf = field.seen(models.velocity, z, p.radius[a]);
+                    let u = [uf + fluct[i][0] - p.vx[a], fluct[i][1] - p.vy[a], fluct[i][2] - p.vz[a]];
                     let d = 2.0 * p.radius[a];
                     let speed = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
                     re[i] = speed * d / nu_f;

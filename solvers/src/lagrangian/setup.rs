@@ -120,7 +120,10 @@ pub fn initial_particles(cfg: &Config, m: &Material, seed: u64, file: &str) -> R
                     pos[1] += jitter * (2.0 * rng.gen::<f64>() - 1.0);
                 }
                 let v = [0.0, 0.0, -0.01 * rng.gen::<f64>()];
-                p.push(pos, v, [0.0; 3], r, m.rho_p, false);
+                // drawn only when asked, so that a monodisperse bed keeps its random stream
+                let s = cfg.settings.numerics.size_dispersion;
+                let radius = if s > 0.0 { r * (1.0 + s * (2.0 * rng.gen::<f64>() - 1.0)) } else { r };
+                p.push(pos, v, [0.0; 3], radius, m.rho_p, false);
             }
         }
         Initial::Gas => {

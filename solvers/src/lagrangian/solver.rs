@@ -5,10 +5,10 @@
 use std::borrow::Cow;
 use std::time::Instant;
 
-use saltus_core::scene::Scene;
+use saltus_core::scene::{DragVelocity, Scene};
 use saltus_core::{DragLaw, EffectiveViscosity, Error, Hindrance, Turbulence};
 
-use super::averaging::CellSums;
+use super::averaging::{CellSums, Seen};
 use super::config::{Config, FluidMode, Initial};
 use super::contact::{ContactLaw, ContactModel};
 use super::dem::Dem;
@@ -60,6 +60,10 @@ pub struct Lagrangian<'a> {
     hindrance: &'a dyn Hindrance,
     pub(super) fluctuation: Option<&'a dyn saltus_core::Fluctuation>,
     pub(super) sums: CellSums,
+    /// fluid velocity averaged over each particle at the drag evaluation of the last fluid
+    /// update (m/s), ubar_p of the exact exchange ([`CellSums::accumulate`]); with
+    /// `drag_velocity = "centre"`, zeros (unused)
+    pub(super) seen: Vec<f64>,
     pub(super) phi: Vec<f64>,
     pub(super) u_p: Vec<f64>,
     pub(super) beta: Vec<f64>,
@@ -243,6 +247,7 @@ impl<'a> Lagrangian<'a> {
             fluctuation,
             re_free_hindrance: re_free,
             sums: CellSums::new(cells),
+            seen: vec![0.0; n],
             phi: v(0.0),
             u_p: v(0.0),
             beta: v(0.0),
@@ -282,7 +287,12 @@ impl<'a> Lagrangian<'a> {
     }
 
     fn models(&self) -> DragModels<'a> {
-        DragModels { drag: self.drag, hindrance: self.hindrance, fluctuation: self.fluctuation }
+        DragModels {
+            drag: self.drag,
+            hindrance: self.hindrance,
+            fluctuation: self.fluctuation,
+            velocity: self.cfg.settings.numerics.drag_velocity,
+        }
     }
 
     /// One DEM step with the fluid force of the current fluid field; with `sampled`, the
@@ -293,6 +303,15 @@ impl<'a> Lagrangian<'a> {
             let models = self.models();
             let dt = self.dem.dt();
             self.forces.evaluate(&self.dem.p, &self.field, &models, dt, upto, &mut self.dem.ext);
+            if all && models.velocity == DragVelocity::SphereAverage {
+                // the exact exchange needs the fluid velocity each grain's drag saw,
+                // before the step moves it
+                let p = &self.dem.p;
+                self.seen.resize(p.len(), 0.0);
+                for ((s, &z), &r) in self.seen.iter_mut().zip(&p.z).zip(&p.radius) {
+                    *s = self.field.sphere_velocity(z, r);
+                }
+            }
         }
         let slices = sampled.then(|| self.slices());
         self.dem.step_sampled(slices);
@@ -301,7 +320,16 @@ impl<'a> Lagrangian<'a> {
     /// Average the particles on the cells and refresh phi (and the hindrance convention)
     /// the particles see.
     pub(super) fn average(&mut self) {
-        self.sums.accumulate(&self.dem.p, self.field.base, self.field.dz, &self.forces.k, &self.forces.urx);
+        let (k, urx) = (&self.forces.k, &self.forces.urx);
+        let seen = match self.cfg.settings.numerics.drag_velocity {
+            DragVelocity::Centre => Seen::Centre,
+            DragVelocity::SphereAverage => {
+                // one per particle even where no drag was evaluated (a dry run's samples)
+                self.seen.resize(self.dem.p.len(), 0.0);
+                Seen::SphereAverage(&self.seen)
+            }
+        };
+        self.sums.accumulate(&self.dem.p, self.field.base, self.field.dz, k, urx, seen);
         let u_f: &[f64] = match &self.column {
             Some(c) => c.velocity(),
             None => &self.field.u,
@@ -412,7 +440,7 @@ impl<'a> Lagrangian<'a> {
                     ),
                 });
             }
-            self.field.u.copy_from_slice(col.velocity());
+            self.field.set_velocity(col.velocity());
             self.field.nu_t.copy_from_slice(col.eddy_viscosity());
             if let Some((k, omega)) = col.k_omega() {
                 let [kf, wf] = &mut self.field.k_omega;
