@@ -570,6 +570,52 @@ mod tests {
     }
 
     #[test]
+    fn the_parallel_build_is_the_serial_one_and_carries_every_history() {
+        // 900 grains (four chunks of rows) in a periodic box: the list built on two
+        // threads is the one built on one, pair for pair, and holds exactly the close
+        // pairs (brute force); after a move, every pair that survives keeps its history
+        let (l, r, skin) = (0.1, 3e-3, 1e-3);
+        let bx = Box3 { length: [l, l, 0.0], periodic: [true, true, false] };
+        let mut rng = saltus_core::rng::stream(3, 0);
+        use rand::Rng as _;
+        let mut p = Particles::default();
+        for _ in 0..900 {
+            let pos = [l * rng.gen::<f64>(), l * rng.gen::<f64>(), 0.05 * rng.gen::<f64>()];
+            p.push(pos, [0.0; 3], [0.0; 3], r, 2500.0, false);
+        }
+        let build = |threads: usize, p: &mut Particles, list: &mut NeighbourList| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
+            pool.install(|| list.build(p, &bx));
+        };
+        let (mut one, mut two) = (NeighbourList::new(skin), NeighbourList::new(skin));
+        build(1, &mut p.clone(), &mut one);
+        build(2, &mut p, &mut two);
+        assert!(one.len() > 2 * CHUNK, "{} pairs", one.len());
+        assert_eq!((&one.i, &one.j, &one.shift, &one.start), (&two.i, &two.j, &two.shift, &two.start));
+        let mut got: Vec<(usize, usize)> = two.i.iter().zip(&two.j).map(|(&a, &b)| (a as usize, b as usize)).collect();
+        got.sort_unstable();
+        assert_eq!(got, pairs_within(&p, &bx, skin));
+        // a history per pair that names it, then a move of at most 0.2 skin and a rebuild,
+        // which doubles the skin (one step since the build): every pair survives
+        let before = two.len();
+        for q in 0..two.len() {
+            two.hist[q] = [two.i[q] as f64, two.j[q] as f64, 1.0];
+        }
+        for a in 0..p.len() {
+            p.x[a] += 0.2 * skin * (2.0 * rng.gen::<f64>() - 1.0);
+        }
+        two.steps_since = 1;
+        build(2, &mut p, &mut two);
+        let carried = (0..two.len()).filter(|&q| two.hist[q][2] == 1.0).count();
+        for q in 0..two.len() {
+            let h = two.hist[q];
+            assert!(h == [0.0; 3] || h == [two.i[q] as f64, two.j[q] as f64, 1.0], "pair {q}: {h:?}");
+        }
+        assert!(two.skin > 1.5 * skin);
+        assert_eq!(carried, before, "{carried} of {before} histories carried");
+    }
+
+    #[test]
     fn history_survives_a_rebuild() {
         let bx = Box3 { length: [1.0, 1.0, 0.0], periodic: [true, true, false] };
         let mut p = Particles::default();
