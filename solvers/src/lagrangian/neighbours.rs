@@ -170,6 +170,88 @@ impl Axis {
     }
 }
 
+/// What the rows of a build read: the particles, the cell list and the previous list.
+struct Grid<'a> {
+    x: &'a [f64],
+    y: &'a [f64],
+    z: &'a [f64],
+    radius: &'a [f64],
+    inv_mass: &'a [f64],
+    cell_items: &'a [u32],
+    cell_start: &'a [usize],
+    /// empty when there is no previous list to carry histories from
+    old_i_start: &'a [usize],
+    old_j: &'a [u32],
+    old_hist: &'a [[f64; 3]],
+    skin: f64,
+    half: [f64; 3],
+    period: [f64; 3],
+    axes: [Axis; 3],
+}
+
+impl Grid<'_> {
+    /// The rows of the particles `range` into `out`. The slices are taken into locals
+    /// first: read through the structure, their addresses would be reloaded after every
+    /// push into `out`.
+    fn rows(&self, range: std::ops::Range<usize>, out: &mut Rows) {
+        let Grid { x, y, z, radius, inv_mass, cell_items, cell_start, old_i_start, old_j, old_hist, .. } = *self;
+        let (skin, half, period, axes) = (self.skin, self.half, self.period, self.axes);
+        let had_old = !old_i_start.is_empty();
+        for a in range {
+            let (xa, ya, za, ra) = (x[a], y[a], z[a], radius[a]);
+            let fixed_a = inv_mass[a] == 0.0;
+            let ix = axes[0].index(xa);
+            let iy = axes[1].index(ya);
+            let iz = axes[2].index(za);
+            let old = if had_old { old_i_start[a]..old_i_start[a + 1] } else { 0..0 };
+            for &oz in axes[2].offsets() {
+                let Some(cz) = axes[2].neighbour(iz, oz) else { continue };
+                for &oy in axes[1].offsets() {
+                    let Some(cy) = axes[1].neighbour(iy, oy) else { continue };
+                    for &ox in axes[0].offsets() {
+                        let Some(cx) = axes[0].neighbour(ix, ox) else { continue };
+                        let c = (cz * axes[1].n + cy) * axes[0].n + cx;
+                        for &b in &cell_items[cell_start[c]..cell_start[c + 1]] {
+                            let b = b as usize;
+                            if b <= a || (fixed_a && inv_mass[b] == 0.0) {
+                                continue;
+                            }
+                            let mut d = [x[b] - xa, y[b] - ya, z[b] - za];
+                            let mut s = [0.0; 3];
+                            for k in 0..3 {
+                                s[k] = if d[k] > half[k] {
+                                    -period[k]
+                                } else if d[k] < -half[k] {
+                                    period[k]
+                                } else {
+                                    0.0
+                                };
+                                d[k] += s[k];
+                            }
+                            let reach = ra + radius[b] + skin;
+                            if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= reach * reach {
+                                continue;
+                            }
+                            let h = old_j[old.clone()]
+                                .iter()
+                                .position(|&oj| oj as usize == b)
+                                .map_or([0.0; 3], |q| old_hist[old.start + q]);
+                            let inv_m = inv_mass[a] + inv_mass[b];
+                            out.i.push(a as u32);
+                            out.j.push(b as u32);
+                            out.shift.push(s);
+                            out.sqrt_m.push((1.0 / inv_m).sqrt());
+                            out.r_eff.push(ra * radius[b] / (ra + radius[b]));
+                            out.hist.push(h);
+                        }
+                    }
+                }
+            }
+            out.ends.push(out.i.len());
+        }
+    }
+}
+
 impl NeighbourList {
     /// An empty list with surface-distance skin `skin` (m), the smallest the list adapts
     /// to.
@@ -323,80 +405,45 @@ impl NeighbourList {
         }
         // the rows of fixed chunks of particles in parallel, each into its own part, then
         // the parts end to end: the same pairs in the same order on any number of threads
-        let p: &Particles = p;
-        let (cell_items, cell_start) = (&self.cell_items, &self.cell_start);
-        let (old_i_start, old_j, old_hist, skin) = (&self.old_i_start, &self.old_j, &self.old_hist, self.skin);
-        let row = |a: usize, out: &mut Rows| {
-            let (xa, ya, za, ra) = (p.x[a], p.y[a], p.z[a], p.radius[a]);
-            let fixed_a = p.inv_mass[a] == 0.0;
-            let ix = axes[0].index(xa);
-            let iy = axes[1].index(ya);
-            let iz = axes[2].index(za);
-            let old = if had_old { old_i_start[a]..old_i_start[a + 1] } else { 0..0 };
-            for &oz in axes[2].offsets() {
-                let Some(cz) = axes[2].neighbour(iz, oz) else { continue };
-                for &oy in axes[1].offsets() {
-                    let Some(cy) = axes[1].neighbour(iy, oy) else { continue };
-                    for &ox in axes[0].offsets() {
-                        let Some(cx) = axes[0].neighbour(ix, ox) else { continue };
-                        let c = cell_id(cx, cy, cz);
-                        for &b in &cell_items[cell_start[c]..cell_start[c + 1]] {
-                            let b = b as usize;
-                            if b <= a || (fixed_a && p.inv_mass[b] == 0.0) {
-                                continue;
-                            }
-                            let mut d = [p.x[b] - xa, p.y[b] - ya, p.z[b] - za];
-                            let mut s = [0.0; 3];
-                            for k in 0..3 {
-                                s[k] = if d[k] > half[k] {
-                                    -period[k]
-                                } else if d[k] < -half[k] {
-                                    period[k]
-                                } else {
-                                    0.0
-                                };
-                                d[k] += s[k];
-                            }
-                            let reach = ra + p.radius[b] + skin;
-                            if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= reach * reach {
-                                continue;
-                            }
-                            let h = old_j[old.clone()]
-                                .iter()
-                                .position(|&oj| oj as usize == b)
-                                .map_or([0.0; 3], |q| old_hist[old.start + q]);
-                            let inv_m = p.inv_mass[a] + p.inv_mass[b];
-                            out.i.push(a as u32);
-                            out.j.push(b as u32);
-                            out.shift.push(s);
-                            out.sqrt_m.push((1.0 / inv_m).sqrt());
-                            out.r_eff.push(ra * p.radius[b] / (ra + p.radius[b]));
-                            out.hist.push(h);
-                        }
-                    }
-                }
-            }
-            out.ends.push(out.i.len());
+        let grid = Grid {
+            x: &p.x,
+            y: &p.y,
+            z: &p.z,
+            radius: &p.radius,
+            inv_mass: &p.inv_mass,
+            cell_items: &self.cell_items,
+            cell_start: &self.cell_start,
+            old_i_start: if had_old { &self.old_i_start } else { &[] },
+            old_j: &self.old_j,
+            old_hist: &self.old_hist,
+            skin: self.skin,
+            half,
+            period,
+            axes,
         };
-        let parts = n.div_ceil(CHUNK);
+        // one part on one thread (no copy: the part becomes the list), chunks of CHUNK
+        // particles otherwise; the list is the same whatever the parts
+        let len = if rayon::current_num_threads() > 1 { CHUNK } else { n.max(1) };
+        let parts = n.div_ceil(len).max(1);
         if self.parts.len() < parts {
             self.parts.resize_with(parts, Rows::default);
         }
         self.parts[..parts].par_iter_mut().enumerate().for_each(|(c, part)| {
             part.clear();
-            for a in c * CHUNK..((c + 1) * CHUNK).min(n) {
-                row(a, part);
-            }
+            grid.rows(c * len..((c + 1) * len).min(n), part);
         });
-        self.i.clear();
-        self.j.clear();
-        self.shift.clear();
-        self.sqrt_m.clear();
-        self.r_eff.clear();
-        self.hist.clear();
+        // the first part's buffers become the list's, the others are appended
+        let first = &mut self.parts[0];
+        std::mem::swap(&mut self.i, &mut first.i);
+        std::mem::swap(&mut self.j, &mut first.j);
+        std::mem::swap(&mut self.shift, &mut first.shift);
+        std::mem::swap(&mut self.sqrt_m, &mut first.sqrt_m);
+        std::mem::swap(&mut self.r_eff, &mut first.r_eff);
+        std::mem::swap(&mut self.hist, &mut first.hist);
         self.start.clear();
         self.start.push(0);
-        for part in &self.parts[..parts] {
+        self.start.extend_from_slice(&first.ends);
+        for part in &self.parts[1..parts] {
             let base = self.i.len();
             self.start.extend(part.ends.iter().map(|e| base + e));
             self.i.extend_from_slice(&part.i);
