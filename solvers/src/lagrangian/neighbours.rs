@@ -10,11 +10,12 @@
 //! depend on the number of threads.
 //!
 //! A rebuild reuses the buffers of the previous list (they only grow), and carries the
-//! tangential history of the pairs that survive. Its rows are found in parallel, over
-//! fixed chunks of [`CHUNK`] particles each writing its own part, and the parts put end
-//! to end in chunk order: the same list on any number of threads, and the build no
-//! longer runs on one thread while the other waits (it was 15 % of a step at the
-//! peer's time step).
+//! tangential history of the pairs that survive. On more than one thread its rows are
+//! found in parallel, over fixed chunks of [`CHUNK`] particles each writing its own
+//! part, and the parts put end to end in chunk order (on one thread, one part that
+//! becomes the list): the same list on any number of threads, and the build no longer
+//! runs on one thread while the other waits (it was 15 % of a step at the peer's time
+//! step).
 //!
 //! # The skin follows the motion
 //!
