@@ -20,6 +20,7 @@ def test_models_is_the_json_listing(cli):
         "granular",
         "turbulence",
         "fluctuation",
+        "wall_friction",
     }
 
 
