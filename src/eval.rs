@@ -412,10 +412,11 @@ impl Model {
             }
             AnyClosure::WallFriction(m) => {
                 let re = need(input, "re", family, origin)?;
-                check_reynolds(re, rows)?;
+                check_non_negative("re", re, rows)?;
                 let mut po = re.to_vec();
                 m.poiseuille_batch(&mut po);
-                out.push("f", po.iter().zip(re).map(|(&p, &r)| p / r).collect());
+                // the model's own f: a frictionless wall has f = 0 at Re = 0 too
+                out.push("f", re.iter().map(|&r| m.friction_factor(r)).collect());
                 out.push("f_re", po);
             }
         }
@@ -480,8 +481,13 @@ pub fn evaluate(
 }
 
 fn check_reynolds(re: &[f64], rows: Rows) -> anyhow::Result<()> {
-    if let Some((i, r)) = re.iter().enumerate().find(|(_, r)| !(r.is_finite() && **r >= 0.0)) {
-        bail!("{}: row {}: re_p = {r}: allowed finite values >= 0", rows.origin, i + rows.first);
+    check_non_negative("re_p", re, rows)
+}
+
+/// Every value of column `name` finite and >= 0.
+fn check_non_negative(name: &str, values: &[f64], rows: Rows) -> anyhow::Result<()> {
+    if let Some((i, r)) = values.iter().enumerate().find(|(_, r)| !(r.is_finite() && **r >= 0.0)) {
+        bail!("{}: row {}: {name} = {r}: allowed finite values >= 0", rows.origin, i + rows.first);
     }
     Ok(())
 }

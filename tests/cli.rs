@@ -225,6 +225,26 @@ fn closure_eval_writes_inputs_then_outputs() {
     assert!((last - 4.0).abs() < 1e-12, "{s}");
 }
 
+/// The wall friction: the laminar plane-Poiseuille wall (f Re = 48) below Re = 618, the
+/// undefined f of a laminar law at rest as an empty cell, a frictionless wall 0 everywhere,
+/// and a negative Re refused naming its column.
+#[test]
+fn closure_eval_wall_friction() {
+    let d = tmp_dir("eval_wall");
+    let input = write(&d, "re.csv", "re\n0\n100\n");
+    let eval = |model: &str, input: &std::path::Path| {
+        saltus(&["closure", "eval", "--family", "wall_friction", "--model", model, "--input", input.to_str().unwrap()])
+    };
+    let o = eval("type = \"graf_altinakar\"", &input);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stdout(&o).trim(), "re,f,f_re\n0,,48\n100,0.48,48");
+    let o = eval("type = \"none\"", &input);
+    assert_eq!(stdout(&o).trim(), "re,f,f_re\n0,0,0\n100,0,0");
+    let o = eval("type = \"graf_altinakar\"", &write(&d, "neg.csv", "re\n-1\n"));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("neg.csv: row 2: re = -1"), "{}", stderr(&o));
+}
+
 #[test]
 fn closure_eval_kinetic_theory_and_granular() {
     let d = tmp_dir("eval_kt");

@@ -24,6 +24,10 @@ impl WallFriction for NoWallFriction {
     fn poiseuille_number(&self, _re: f64) -> f64 {
         0.0
     }
+    /// 0 at every Re, Re = 0 included (the default quotient f Re / Re would be 0 / 0 there)
+    fn friction_factor(&self, _re: f64) -> f64 {
+        0.0
+    }
 }
 
 register_model!(Family::WallFriction, "none", WallFriction, NoWallFriction);
@@ -36,6 +40,7 @@ mod tests {
     proptest! {
         #[test]
         fn is_zero_at_every_reynolds_number(lr in -6f64..12.0) {
+            prop_assert_eq!(NoWallFriction::default().friction_factor(0.0), 0.0);
             let re = 10f64.powf(lr);
             prop_assert_eq!(NoWallFriction::default().poiseuille_number(re), 0.0);
             prop_assert_eq!(NoWallFriction::default().friction_factor(re), 0.0);
