@@ -241,6 +241,11 @@ fn g0_extracted_from_the_pressure_is_the_model_that_made_it() {
         assert_vanishes(&d, "frictional_collisional", "g0 closure", 1e-12, 20);
         let fit = d.closures[0].g0_fit.expect("fit");
         assert!((fit.a - a).abs() < 1e-10, "{} vs {a}", fit.a);
+        // every band of phi holds cells and gives the same a, without scatter
+        for b in fit.bands {
+            assert!(b.cells >= 3 && (b.a - a).abs() < 1e-10 && b.a_stderr < 1e-10, "{b:?} vs {a}");
+        }
+        assert!(fit.a_stderr < 1e-10, "{}", fit.a_stderr);
         if a == 0.0 {
             assert_vanishes(&d, "frictional_collisional", "g0 carnahan_starling", 1e-12, 20);
         }

@@ -16,17 +16,63 @@ use super::comparison::Comparison;
 use super::fields::RunFields;
 
 /// What a kinetic closure's comparisons found besides the comparisons: the coefficient a
-/// of eq 3.2 fitted to the extracted g0, and the value eq 3.3 gives at the grains' mu_p.
+/// of eq 3.2 fitted to the extracted g0 over all the cells used and over three bands of
+/// phi, and the value eq 3.3 gives at the grains' mu_p.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct G0Fit {
     /// relative least-squares a (weights 1/g0^2) of g0 - g0_CS = a phi^2 / (phi_max - phi)^1.5 over the cells used
     pub a: f64,
+    /// its standard error from the residuals, sqrt(SSR / (n - 1) / Sxx) (NaN below two
+    /// cells): a lower bound, since neighbouring slices of a DEM profile are correlated
+    pub a_stderr: f64,
     /// a(mu_p) of eq 3.3 with the paper's a0 = 0.58, a_max = 3.70, delta = 0.54
     pub a_eq33: f64,
     /// the grains' interparticle friction mu_p
     pub mu_p: f64,
     /// cells of the fit
     pub cells: usize,
+    /// the same fit in each band of [`G0_FIT_BANDS`]
+    pub bands: [BandFit; 3],
+}
+
+/// The phi bands of the banded fits: the dilute layer, where the friction term of eq 3.2
+/// is under a third of g0 for a ~ 3 and a rests on the extracted g0's last digits; the
+/// transition; and the dense layer, where that term carries most of g0. The fit over all
+/// cells weighs them by their number, so how a varies across the bands says how much the
+/// single a depends on the window (Chassagne et al. do not state theirs).
+pub const G0_FIT_BANDS: [(f64, f64); 3] = [(0.0, 0.3), (0.3, 0.5), (0.5, 1.0)];
+
+/// The fit of a over the cells with phi in [phi_lo, phi_hi).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BandFit {
+    /// lower bound of phi (inclusive)
+    pub phi_lo: f64,
+    /// upper bound of phi (exclusive)
+    pub phi_hi: f64,
+    /// fitted a (NaN without cells)
+    pub a: f64,
+    /// its standard error (NaN below two cells)
+    pub a_stderr: f64,
+    /// cells in the band
+    pub cells: usize,
+}
+
+/// Relative least squares of y = a x through the origin over `points` (x, y) and the
+/// standard error of a: (a, stderr, n).
+fn slope(points: impl Iterator<Item = (f64, f64)> + Clone) -> (f64, f64, usize) {
+    let (mut sxy, mut sxx, mut n) = (0.0, 0.0, 0usize);
+    for (x, y) in points.clone() {
+        sxy += x * y;
+        sxx += x * x;
+        n += 1;
+    }
+    if sxx <= 0.0 {
+        return (f64::NAN, f64::NAN, n);
+    }
+    let a = sxy / sxx;
+    let ssr: f64 = points.map(|(x, y)| (y - a * x).powi(2)).sum();
+    let se = if n > 1 { (ssr / (n - 1) as f64 / sxx).sqrt() } else { f64::NAN };
+    (a, se, n)
 }
 
 /// A cell's state for the kinetic comparisons.
@@ -146,7 +192,8 @@ fn radial_distribution(
     let mut own = Comparison::new(label, "g0 closure", "g0 [-]", "phi");
     let mut library: Vec<Comparison> =
         models.iter().map(|(name, _)| Comparison::new(label, name, "g0 [-]", "phi")).collect();
-    let (mut sxy, mut sxx, mut n) = (0.0, 0.0, 0);
+    // (phi, x, y) of the relative regression y = a x, per cell
+    let mut points: Vec<(f64, f64, f64)> = Vec::with_capacity(cells.len());
     for cell in cells {
         let c = &cell.coef;
         let f1 = cell.p / (f.rho_p * cell.t);
@@ -162,12 +209,16 @@ fn radial_distribution(
         // relative least squares: g0 spans three decades between the saltation layer
         // and the bed, and an absolute fit would be the densest cell's alone
         let x = cell.phi * cell.phi / (phi_max - cell.phi).powf(1.5) / g0;
-        sxy += x * (g0 - carnahan_starling(cell.phi)) / g0;
-        sxx += x * x;
-        n += 1;
+        points.push((cell.phi, x, (g0 - carnahan_starling(cell.phi)) / g0));
     }
     let a_eq33 = RadialDistribution::default().coefficient_a(mu_p);
-    let fit = G0Fit { a: if sxx > 0.0 { sxy / sxx } else { f64::NAN }, a_eq33, mu_p, cells: n };
+    let (a, a_stderr, cells) = slope(points.iter().map(|&(_, x, y)| (x, y)));
+    let bands = G0_FIT_BANDS.map(|(phi_lo, phi_hi)| {
+        let (a, a_stderr, cells) =
+            slope(points.iter().filter(|p| p.0 >= phi_lo && p.0 < phi_hi).map(|&(_, x, y)| (x, y)));
+        BandFit { phi_lo, phi_hi, a, a_stderr, cells }
+    });
+    let fit = G0Fit { a, a_stderr, a_eq33, mu_p, cells, bands };
     let mut out = vec![own];
     out.extend(library);
     (out, fit)
@@ -213,4 +264,24 @@ fn drag_dissipation(
         quadratic.push(zk, c.phi, j_int[c.k], -DragDissipation::Quadratic.factor(cd_inf, cd) * bt);
     }
     Ok(vec![linear, quadratic])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::slope;
+
+    /// Two cells at the same x with residuals +e and -e: a is their mean exactly and its
+    /// standard error is e (SSR = 2 e^2, n - 1 = 1, Sxx = 2 x^2 with x = 1).
+    #[test]
+    fn the_slope_and_its_standard_error_of_symmetric_residuals() {
+        let (a, e) = (2.5, 0.3);
+        let (fit, se, n) = slope([(1.0, a + e), (1.0, a - e)].into_iter());
+        assert_eq!(n, 2);
+        assert!((fit - a).abs() < 1e-15 && (se - e).abs() < 1e-15, "{fit} {se}");
+        // exact data: no error; one cell: no error estimate; no cell: no fit
+        let (fit, se, _) = slope([(0.5, 1.0), (2.0, 4.0), (3.0, 6.0)].into_iter());
+        assert!((fit - 2.0).abs() < 1e-15 && se < 1e-15);
+        assert!(slope([(1.0, 2.0)].into_iter()).1.is_nan());
+        assert!(slope(std::iter::empty()).0.is_nan());
+    }
 }

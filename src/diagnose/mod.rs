@@ -17,7 +17,7 @@ use anyhow::bail;
 
 pub use comparison::Comparison;
 pub use fields::RunFields;
-pub use kinetic::G0Fit;
+pub use kinetic::{BandFit, G0Fit, G0_FIT_BANDS};
 
 /// Default lowest volume fraction of a usable cell: below it the averages of a DEM
 /// slice rest on a few grains crossing it and the continuum closures are not meant to
@@ -131,6 +131,37 @@ impl Diagnosis {
         }
         std::fs::write(&summary, text).map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", summary.display()))?;
         written.push(summary);
+        let fits: Vec<_> = self.closures.iter().filter_map(|cd| cd.g0_fit.map(|f| (cd, f))).collect();
+        if !fits.is_empty() {
+            let path = out.join("g0_fit.csv");
+            let num = |x: f64| if x.is_finite() { format!("{x:e}") } else { String::new() };
+            let mut text = String::from("closure,model,phi_lo,phi_hi,cells,a,a_stderr,a_eq33,mu_p\n");
+            for (cd, f) in fits {
+                let all = kinetic::BandFit {
+                    phi_lo: self.phi_min,
+                    phi_hi: 1.0,
+                    a: f.a,
+                    a_stderr: f.a_stderr,
+                    cells: f.cells,
+                };
+                for b in std::iter::once(all).chain(f.bands) {
+                    text.push_str(&format!(
+                        "{},{},{},{},{},{},{},{},{}\n",
+                        cd.label,
+                        cd.model,
+                        b.phi_lo,
+                        b.phi_hi,
+                        b.cells,
+                        num(b.a),
+                        num(b.a_stderr),
+                        num(f.a_eq33),
+                        f.mu_p
+                    ));
+                }
+            }
+            std::fs::write(&path, text).map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", path.display()))?;
+            written.push(path);
+        }
         for c in self.comparisons().filter(|c| c.cells() > 0) {
             written.extend(c.write(out)?);
         }
@@ -164,13 +195,29 @@ impl Diagnosis {
             }
             if let Some(fit) = cd.g0_fit {
                 s.push_str(&format!(
-                    "{:<24} a of eq 3.2 fitted to the extracted g0: {} over {} cells; eq 3.3 at mu_p = {}: {}\n",
+                    "{:<24} a of eq 3.2 fitted to the extracted g0: {} +- {} over {} cells; eq 3.3 at mu_p = {}: {}\n",
                     cd.label,
                     figure(fit.a),
+                    figure(fit.a_stderr),
                     fit.cells,
                     fit.mu_p,
                     figure(fit.a_eq33)
                 ));
+                let bands: Vec<String> = fit
+                    .bands
+                    .iter()
+                    .map(|b| {
+                        format!(
+                            "[{}, {}): {} +- {} ({} cells)",
+                            b.phi_lo,
+                            b.phi_hi,
+                            figure(b.a),
+                            figure(b.a_stderr),
+                            b.cells
+                        )
+                    })
+                    .collect();
+                s.push_str(&format!("{:<24} the same fit by band of phi: {}\n", cd.label, bands.join("; ")));
             }
         }
         s
