@@ -45,7 +45,7 @@ impl EvalFamily {
     pub fn inputs(self) -> &'static [&'static str] {
         match self {
             // the names of a closure registered at run time, defined once
-            EvalFamily::Drag | EvalFamily::Hindrance | EvalFamily::Viscosity => {
+            EvalFamily::Drag | EvalFamily::Hindrance | EvalFamily::Viscosity | EvalFamily::WallFriction => {
                 self.scene_family().and_then(runtime::io).map_or(&[], |(inputs, _)| inputs)
             }
             EvalFamily::Granular => &["i (mu_i) or k (mu_k)"],
@@ -54,7 +54,6 @@ impl EvalFamily {
             EvalFamily::Fluctuation => {
                 &["k", "omega", "nu_t", "reynolds_stress", "slip", "response_time", "depth", "bulk_velocity"]
             }
-            EvalFamily::WallFriction => &["re"],
         }
     }
 

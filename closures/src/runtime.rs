@@ -1,5 +1,5 @@
 //! The models of closures registered at run time ([`saltus_core::runtime`]): one adapter
-//! that implements the drag, hindrance and viscosity traits by calling the registered
+//! that implements the drag, hindrance, viscosity and wall-friction traits by calling the registered
 //! function on whole slices, so that a solver's batch call (a column, a chunk of
 //! particles) is one call of the function.
 //!
@@ -24,7 +24,7 @@ use std::sync::{Arc, OnceLock};
 
 use saltus_core::closure::Family;
 use saltus_core::runtime::{Built, RuntimeModel};
-use saltus_core::{Describe, DragLaw, DragReynolds, EffectiveViscosity, Hindrance, Limit, Param};
+use saltus_core::{Describe, DragLaw, DragReynolds, EffectiveViscosity, Hindrance, Limit, Param, WallFriction};
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
 
@@ -77,6 +77,7 @@ pub fn build(model: &Arc<RuntimeModel>, values: Vec<f64>) -> Result<Built, Strin
         }
         Family::Hindrance => Built::Hindrance(Box::new(c)),
         Family::Viscosity => Built::Viscosity(Box::new(c)),
+        Family::WallFriction => Built::WallFriction(Box::new(c)),
         other => return Err(saltus_core::runtime::refused(other)),
     })
 }
@@ -211,6 +212,24 @@ impl EffectiveViscosity for RuntimeClosure {
     }
     fn ratio_batch(&self, phi: &[f64], out: &mut [f64]) {
         self.call(&[phi], &mut [out]);
+    }
+}
+
+/// The function's output is the Poiseuille number f Re (`f_re`), finite where the flow
+/// stops, from which the trait's default gives f = f Re / Re.
+impl WallFriction for RuntimeClosure {
+    fn typetag_name(&self) -> &'static str {
+        self.model.name
+    }
+    fn typetag_deserialize(&self) {}
+
+    fn poiseuille_number(&self, re: f64) -> f64 {
+        self.scalar(&[re])
+    }
+    fn poiseuille_batch(&self, re: &mut [f64]) {
+        // in place: the inputs copied once per batch
+        let input = re.to_vec();
+        self.call(&[&input], &mut [re]);
     }
 }
 

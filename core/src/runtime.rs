@@ -22,9 +22,8 @@ use crate::{
 /// Families a run-time closure may belong to: those whose trait is a function of arrays of
 /// numbers. The granular stress (two faces, a packing inverse and a pressure solved by
 /// bisection, grain properties inherited), turbulence (column views, transported fields)
-/// and fluctuation (a seeded random draw per particle) are not; nor, yet, the wall friction
-/// (a law of one number, which only the narrow-channel DEM uses).
-pub const FAMILIES: [Family; 3] = [Family::Drag, Family::Hindrance, Family::Viscosity];
+/// and fluctuation (a seeded random draw per particle) are not.
+pub const FAMILIES: [Family; 4] = [Family::Drag, Family::Hindrance, Family::Viscosity, Family::WallFriction];
 
 /// Input names and output names of the function of a run-time closure of `family`: the
 /// names `saltus closure eval` uses. `None` for a family outside [`FAMILIES`].
@@ -33,7 +32,8 @@ pub fn io(family: Family) -> Option<(&'static [&'static str], &'static [&'static
         Family::Drag => Some((&["re_p"], &["cd"])),
         Family::Hindrance => Some((&["phi", "re_p"], &["factor"])),
         Family::Viscosity => Some((&["phi"], &["nu_ratio"])),
-        Family::Granular | Family::Turbulence | Family::Fluctuation | Family::WallFriction => None,
+        Family::WallFriction => Some((&["re"], &["f_re"])),
+        Family::Granular | Family::Turbulence | Family::Fluctuation => None,
     }
 }
 
@@ -112,6 +112,8 @@ pub enum Built {
     Hindrance(Box<dyn Hindrance>),
     /// an effective viscosity
     Viscosity(Box<dyn EffectiveViscosity>),
+    /// a side-wall friction law
+    WallFriction(Box<dyn WallFriction>),
 }
 
 /// A family trait object that a [`Built`] may hold.
@@ -138,7 +140,7 @@ macro_rules! from_runtime {
     };
 }
 
-from_runtime!(DragLaw => Drag, Hindrance => Hindrance, EffectiveViscosity => Viscosity; GranularStress, Turbulence, Fluctuation, WallFriction);
+from_runtime!(DragLaw => Drag, Hindrance => Hindrance, EffectiveViscosity => Viscosity, WallFriction => WallFriction; GranularStress, Turbulence, Fluctuation);
 
 /// One run-time closure: what the registry lists and the scene loader checks, and how to
 /// build it. Strings are `'static` because [`crate::Describe`] hands them out so; a

@@ -253,3 +253,31 @@ def test_a_python_viscosity_is_the_built_in_einstein_law(root):
     builtin = saltus.run(root / CASE01, set={"closures.viscosity.type": "einstein"}, out=False)
     python = saltus.run(root / CASE01, set={"closures.viscosity.type": "py_einstein"}, out=False)
     assert_same_run(builtin, python)
+
+
+def test_a_python_wall_friction_is_the_built_in_graf_altinakar_law(root):
+    def graf_altinakar(re):
+        """1/sqrt(f) = 2 log10(Re sqrt(f) / 4) + 0.32, f = 48 / Re below Re = 618"""
+        # Newton on y = ln(1/sqrt f): e^y + a y = c (Maurin et al. 2015 section III B)
+        # (the turbulent branch evaluated where it applies only, at Re >= 618)
+        laminar = re <= 617.970325458568
+        turbulent = np.where(laminar, 618.0, re)
+        a = 2.0 / np.log(10.0)
+        c = a * np.log(0.25 * turbulent) + 0.32
+        y = np.log(np.maximum(c, 1.0))
+        for _ in range(60):
+            e = np.exp(y)
+            y = y - (e + a * y - c) / (e + a)
+        return {"f_re": np.where(laminar, 48.0, np.exp(-2.0 * y) * turbulent)}
+
+    saltus.register_closure("wall_friction", "py_graf_altinakar", graf_altinakar, limits=["decreasing"])
+    re = np.array([0.0, 1.0, 617.0, 619.0, 1e4, 1e6, 1e9])
+    py = saltus.Closure("wall_friction", {"type": "py_graf_altinakar"}).evaluate(re=re)
+    builtin = saltus.Closure("wall_friction", {"type": "graf_altinakar"}).evaluate(re=re)
+    assert np.allclose(py["f_re"], builtin["f_re"], rtol=1e-12, atol=0.0), (py, builtin)
+    assert py["f_re"][0] == 48.0
+    report = saltus.closure_check("wall_friction", {"type": "py_graf_altinakar"}, cases=64)
+    assert report.passed, report.text
+    resolved = saltus.check(root / "cases/maurin2015/frey_sim6.toml", set={"closures.wall_friction.type": "py_graf_altinakar"})
+    assert resolved["closures"]["wall_friction"] == {"type": "py_graf_altinakar"}
+    saltus.unregister_closure("wall_friction", "py_graf_altinakar")

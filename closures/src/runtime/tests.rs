@@ -220,6 +220,37 @@ fn a_hindrance_keeps_its_declared_convention() {
     }
 }
 
+/// A laminar wall written as a user would (f Re = C, Maurin et al. 2015 section III B with
+/// the laminar branch of Graf & Altinakar): the Poiseuille number C at every Re, 0 included
+/// (the stress of a wall at rest stays finite), f = C / Re from the trait, one function
+/// call per batch, and the compiled Graf-Altinakar law below its laminar Reynolds number.
+#[test]
+fn a_wall_friction_law_is_a_poiseuille_number_of_re() {
+    let params = vec![Param::new("c", 48.0, ParamRange::open_closed(0.0, 1e3), "-", "f Re")];
+    let f = register(
+        Family::WallFriction,
+        "rt_laminar_wall",
+        params,
+        Box::new(|p, x, out| {
+            for (o, _) in out[0].iter_mut().zip(x[0]) {
+                *o = p[0];
+            }
+            Ok(1)
+        }),
+    );
+    let m: Box<dyn WallFriction> = load(Family::WallFriction, "rt_laminar_wall");
+    let builtin = crate::wall_friction::GrafAltinakar::default();
+    for re in [0.0, 1e-3, 1.0, 100.0, 600.0] {
+        assert_eq!(m.poiseuille_number(re), builtin.poiseuille_number(re), "Re {re}");
+    }
+    assert_eq!(m.friction_factor(4.0), 12.0);
+    let before = f.calls.load(Ordering::Relaxed);
+    let mut re = vec![0.0, 1.0, 10.0, 1e4];
+    m.poiseuille_batch(&mut re);
+    assert_eq!(re, vec![48.0; 4]);
+    assert_eq!(f.calls.load(Ordering::Relaxed), before + 1);
+}
+
 #[test]
 fn registration_refuses_what_a_scene_could_not_use() {
     let model = |family, name: &'static str, params: Vec<Param>| RuntimeModel {
@@ -235,7 +266,7 @@ fn registration_refuses_what_a_scene_could_not_use() {
         build,
     };
     let e = runtime::register(model(Family::Granular, "rt_mu", Vec::new())).unwrap_err();
-    assert!(e.contains("granular") && e.contains("allowed: drag, hindrance, viscosity"), "{e}");
+    assert!(e.contains("granular") && e.contains("allowed: drag, hindrance, viscosity, wall_friction"), "{e}");
     let e = runtime::register(model(Family::Drag, "dallavalle", Vec::new())).unwrap_err();
     assert!(e.contains("built-in"), "{e}");
     let e = runtime::register(model(Family::Drag, "my law", Vec::new())).unwrap_err();

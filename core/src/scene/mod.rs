@@ -35,8 +35,8 @@ pub use solver::{
     SolverKind, Surface, ELASTIC_PHI_RLP, MAX_TIME,
 };
 pub use tables::{
-    Contact, ContactModel, Fluid, Meta, Output, Particles, Physics, Reference, MAX_SNAPSHOTS, MAX_TIMESERIES_ROWS,
-    TIMESERIES_ROWS,
+    Contact, ContactModel, Fluid, Meta, NormalForce, Output, Particles, Physics, Reference, MAX_SNAPSHOTS,
+    MAX_TIMESERIES_ROWS, TIMESERIES_ROWS,
 };
 
 /// Packing the DEM counts the particles of a bed with when `domain.bed_phi` is absent.

@@ -57,6 +57,24 @@ pub enum ContactModel {
     Hertz,
 }
 
+/// Whether the normal force of a contact may pull: the dashpot of a spring-dashpot law
+/// turns attractive as the grains separate (the overlap still positive, the normal
+/// velocity large); a repulsive law ends the contact where the total force reaches zero.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum NormalForce {
+    /// k_n delta - c_n v_n as it is, attractive at the end of a collision; the linear
+    /// law's restitution is exactly e = exp(-pi zeta / sqrt(1 - zeta^2))
+    #[default]
+    SpringDashpot,
+    /// max(k_n delta - c_n v_n, 0), as the DEM code of Maurin et al. 2015 and Chassagne
+    /// et al. 2023 computes it; the linear law's damping is then matched to e by Schwager
+    /// & Poschel 2007's restitution of that force, e = exp(-r (pi - 2 arctan r)) with
+    /// r = zeta / sqrt(1 - zeta^2), which reaches e^-2 at critical damping: e must be
+    /// above e^-2 = 0.1353
+    Repulsive,
+}
+
 /// `[particles.contact]`: the contact law of the grains and its parameters.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -77,6 +95,9 @@ pub struct Contact {
     /// Poisson ratio of the Hertz law
     #[serde(default = "default_poisson")]
     pub poisson: f64,
+    /// whether the normal force may pull (see [`NormalForce`])
+    #[serde(default)]
+    pub normal_force: NormalForce,
 }
 
 fn default_tangential_ratio() -> f64 {
@@ -97,6 +118,7 @@ impl Default for Contact {
             tangential_ratio: default_tangential_ratio(),
             young: default_young(),
             poisson: default_poisson(),
+            normal_force: NormalForce::SpringDashpot,
         }
     }
 }
@@ -158,7 +180,23 @@ impl Particles {
         }
         check(f, "particles.contact.tangential_ratio", c.tangential_ratio, ParamRange::closed(0.0, 10.0))?;
         check(f, "particles.contact.young", c.young, ParamRange::closed(1.0, 1e13))?;
-        check(f, "particles.contact.poisson", c.poisson, ParamRange::closed(0.0, 0.5))
+        check(f, "particles.contact.poisson", c.poisson, ParamRange::closed(0.0, 0.5))?;
+        if c.normal_force == NormalForce::Repulsive && c.law == ContactModel::Linear {
+            // the underdamped repulsive law cannot dissipate more (an overdamped one is
+            // not implemented)
+            let range = ParamRange::open_closed((-2.0f64).exp(), 1.0);
+            if !range.contains(self.restitution) {
+                return Err(crate::error::Error::OutOfRange {
+                    file: f.into(),
+                    key: "particles.restitution".into(),
+                    value: crate::param::number(self.restitution),
+                    allowed: format!(
+                        "{range} with particles.contact.normal_force = \"repulsive\" (e^-2 at critical damping)"
+                    ),
+                });
+            }
+        }
+        Ok(())
     }
 }
 

@@ -5,7 +5,7 @@
 use saltus_core::scene::{LagrangianSettings, Scene, DEM_BED_PHI};
 use saltus_core::Error;
 
-use super::contact::ContactModel;
+use super::contact::{ContactModel, NormalForce};
 
 pub use saltus_core::scene::{Bottom, FluidMode, Initial, ParticleSpec, Surface};
 
@@ -43,6 +43,8 @@ pub struct Settings {
     pub young: f64,
     /// Poisson ratio of the Hertz law
     pub poisson: f64,
+    /// whether the normal force may pull
+    pub normal_force: NormalForce,
     /// normal restitution coefficient e
     pub restitution: f64,
     /// particle friction coefficient mu_p
@@ -94,6 +96,7 @@ impl Config {
             tangential_ratio: p.contact.tangential_ratio,
             young: p.contact.young,
             poisson: p.contact.poisson,
+            normal_force: p.contact.normal_force,
             restitution: p.restitution,
             friction: p.friction,
             settle_time: match l.settle_time {

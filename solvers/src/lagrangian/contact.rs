@@ -39,7 +39,7 @@
 //! restitution close to, not exactly, e. Time step: a safety factor times the Rayleigh
 //! time pi R sqrt(rho / G) / (0.1631 nu + 0.8766).
 
-pub use saltus_core::scene::ContactModel;
+pub use saltus_core::scene::{ContactModel, NormalForce};
 
 /// Parameters of the contact law, resolved for the run.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -62,6 +62,9 @@ pub struct ContactLaw {
     pub zeta: f64,
     /// 2 sqrt(5/6) |beta| of the Hertz law
     pub hertz_damping: f64,
+    /// the normal force is clipped at zero ([`NormalForce::Repulsive`])
+    #[serde(default)]
+    pub repulsive: bool,
 }
 
 impl ContactLaw {
@@ -79,7 +82,36 @@ impl ContactLaw {
             g_star: 0.0,
             zeta,
             hertz_damping: 0.0,
+            repulsive: false,
         }
+    }
+
+    /// The law with the normal force `normal`. A repulsive linear law takes the damping
+    /// ratio whose clipped force gives the restitution e (Schwager & Poschel 2007, the
+    /// underdamped case): the contact ends where k_n delta = c_n v_n, at omega t =
+    /// pi - 2 arctan r, so e = exp(-r (pi - 2 arctan r)) with r = beta / omega =
+    /// zeta / sqrt(1 - zeta^2), increasing in r from e = 1 at r = 0 to e^-2 as r -> inf
+    /// (critical damping). Solved for r by bisection on ln e; e <= e^-2 (refused at scene
+    /// load) gives critical damping. The Hertz law keeps its damping (its e is approximate
+    /// either way).
+    pub fn with_normal_force(mut self, normal: NormalForce) -> Self {
+        self.repulsive = normal == NormalForce::Repulsive;
+        if self.repulsive && self.model == ContactModel::Linear {
+            let target = -self.restitution.ln();
+            let loss = |r: f64| r * (std::f64::consts::PI - 2.0 * r.atan());
+            let (mut lo, mut hi) = (0.0f64, 1e12f64);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if loss(mid) < target {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let r = 0.5 * (lo + hi);
+            self.zeta = r / (1.0 + r * r).sqrt();
+        }
+        self
     }
 
     /// Hertz-Mindlin law for identical spheres of Young modulus `young` (Pa) and Poisson
@@ -98,6 +130,7 @@ impl ContactLaw {
             g_star: shear / (2.0 * (2.0 - poisson)),
             zeta: 0.0,
             hertz_damping: 2.0 * (5.0f64 / 6.0).sqrt() * beta.abs(),
+            repulsive: false,
         }
     }
 
@@ -159,7 +192,8 @@ pub(crate) fn contact_force(law: &ContactLaw, c: &ContactInput, h: &mut [f64; 3]
             (elastic - damping * vn, 8.0 * law.g_star * a, damping)
         }
     };
-    let mut power = damping * vn * vn;
+    // a repulsive law ends the contact's pull: no force, no dashpot work
+    let (fn_, mut power) = if law.repulsive && fn_ < 0.0 { (0.0, 0.0) } else { (fn_, damping * vn * vn) };
     let vt = [c.v_rel[0] - vn * n[0], c.v_rel[1] - vn * n[1], c.v_rel[2] - vn * n[2]];
     // keep the spring in the tangent plane as the contact rolls
     let hn = h[0] * n[0] + h[1] * n[1] + h[2] * n[2];
@@ -201,6 +235,31 @@ mod tests {
             // closed form of the damped oscillator: e = exp(-pi zeta / sqrt(1 - zeta^2))
             let back = (-std::f64::consts::PI * law.zeta / (1.0 - law.zeta * law.zeta).sqrt()).exp();
             prop_assert!((back / e - 1.0).abs() < 1e-12);
+        }
+
+        #[test]
+        fn repulsive_damping_gives_e_by_its_own_relation(e in 0.1354f64..=1.0) {
+            // Schwager & Poschel 2007: e = exp(-r (pi - 2 arctan r)), r = zeta / sqrt(1 - zeta^2);
+            // more damping than the spring-dashpot's for the same e (its pull is gone)
+            let sd = ContactLaw::linear(1e4, 1e4, e, 0.4);
+            let law = sd.with_normal_force(NormalForce::Repulsive);
+            let r = law.zeta / (1.0 - law.zeta * law.zeta).sqrt();
+            let back = (-r * (std::f64::consts::PI - 2.0 * r.atan())).exp();
+            prop_assert!((back / e - 1.0).abs() < 1e-10, "{back} vs {e}");
+            prop_assert!(law.zeta >= sd.zeta && law.zeta < 1.0 && law.repulsive);
+            // the spring-dashpot is untouched
+            prop_assert_eq!(sd.with_normal_force(NormalForce::SpringDashpot), sd);
+        }
+
+        #[test]
+        fn a_repulsive_contact_never_pulls(delta in 1e-9f64..1e-4, vn in -10.0f64..10.0) {
+            let law = ContactLaw::linear(1e4, 1e4, 0.7, 0.4).with_normal_force(NormalForce::Repulsive);
+            let c = ContactInput { n: [0.0, 0.0, 1.0], delta, v_rel: [0.0, 0.0, vn], sqrt_m: 0.01, r_eff: 0.003 };
+            let (f, power) = contact_force(&law, &c, &mut [0.0; 3], 1e-4);
+            // force on i along -n: repulsion pushes i away from j (f_z <= 0), never towards it
+            prop_assert!(f[2] <= 0.0 && power >= 0.0);
+            let pulls = law.kn * delta - law.damping_factor() * 0.01 * vn < 0.0;
+            prop_assert!(!pulls || (f[2] == 0.0 && power == 0.0));
         }
 
         #[test]

@@ -138,7 +138,8 @@ impl<'a> Lagrangian<'a> {
                 ContactLaw::linear(s.stiffness, s.stiffness * s.tangential_ratio, s.restitution, s.friction)
             }
             ContactModel::Hertz => ContactLaw::hertz(s.young, s.poisson, s.restitution, s.friction),
-        };
+        }
+        .with_normal_force(s.normal_force);
         let m = rho_p * setup::sphere_volume(d);
         let dt = s.numerics.dt_safety * law.contact_time(m, 0.5 * d, rho_p, s.young, s.poisson);
         let body = setup::body_acceleration(
