@@ -79,39 +79,13 @@ impl std::str::FromStr for ParamRange {
     /// (an infinite end is open). The same grammar as the `range` attribute of
     /// `#[derive(Describe)]`, read at run time (a closure registered from Python).
     fn from_str(text: &str) -> Result<Self, String> {
-        let t = text.trim();
-        let why = |m: &str| format!("range `{text}`: {m}; write an interval such as \"(0, 100]\" or \"[0, inf)\"");
-        let (Some(first), Some(last)) = (t.chars().next(), t.chars().last()) else { return Err(why("empty")) };
-        let inner = t.get(1..t.len().saturating_sub(1)).filter(|_| t.len() >= 2).unwrap_or_default();
-        let Some((a, b)) = inner.split_once(',') else { return Err(why("two ends separated by a comma")) };
-        let end = |s: &str, open: bool, infinite: &[&str]| -> Result<Bound, String> {
-            let s = s.trim();
-            if infinite.contains(&s) {
-                return if open { Ok(Bound::Unbounded) } else { Err(why("an infinite end is open")) };
-            }
-            match s.parse::<f64>() {
-                Ok(x) if x.is_finite() => Ok(if open { Bound::Open(x) } else { Bound::Closed(x) }),
-                _ => Err(why(&format!("`{s}` is not a finite number"))),
-            }
+        let bound = |e| match e {
+            saltus_interval::End::Unbounded => Bound::Unbounded,
+            saltus_interval::End::Open(x) => Bound::Open(x),
+            saltus_interval::End::Closed(x) => Bound::Closed(x),
         };
-        let lo = match first {
-            '(' => end(a, true, &["-inf"])?,
-            '[' => end(a, false, &["-inf"])?,
-            _ => return Err(why("it must start with ( or [")),
-        };
-        let hi = match last {
-            ')' => end(b, true, &["inf", "+inf"])?,
-            ']' => end(b, false, &["inf", "+inf"])?,
-            _ => return Err(why("it must end with ) or ]")),
-        };
-        let value = |e: Bound, inf: f64| match e {
-            Bound::Open(x) | Bound::Closed(x) => x,
-            Bound::Unbounded => inf,
-        };
-        if value(lo, f64::NEG_INFINITY) >= value(hi, f64::INFINITY) {
-            return Err(why("the lower end must be below the upper end"));
-        }
-        Ok(ParamRange { lo, hi })
+        let (lo, hi) = saltus_interval::parse(text)?;
+        Ok(ParamRange { lo: bound(lo), hi: bound(hi) })
     }
 }
 

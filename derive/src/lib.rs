@@ -222,45 +222,22 @@ fn rename_variant(name: &str, rule: Option<&str>, span: Span) -> syn::Result<Str
     })
 }
 
-/// `"(0, 100]"` -> a `ParamRange` expression, checked at compile time.
+/// `"(0, 100]"` -> a `ParamRange` expression, checked at compile time with the grammar
+/// `ParamRange::from_str` reads at run time (`saltus-interval`).
 fn range_tokens(lit: &LitStr, krate: &TokenStream2) -> syn::Result<TokenStream2> {
-    let text = lit.value();
-    let t = text.trim();
-    let err = |why: &str| {
-        syn::Error::new(
-            lit.span(),
-            format!("range `{text}`: {why}; write an interval such as \"(0, 100]\", \"[0, inf)\" or \"(-inf, inf)\""),
-        )
-    };
-    let (open_lo, open_hi) = match (t.chars().next(), t.chars().last()) {
-        (Some(a @ ('(' | '[')), Some(b @ (')' | ']'))) if t.len() >= 2 => (a == '(', b == ')'),
-        _ => return Err(err("it must start with ( or [ and end with ) or ]")),
-    };
-    let inner = &t[1..t.len() - 1];
-    let parts: Vec<&str> = inner.split(',').map(str::trim).collect();
-    if parts.len() != 2 {
-        return Err(err("two ends separated by a comma"));
-    }
-    let bound = |s: &str, lo: bool, open: bool| -> syn::Result<(TokenStream2, f64)> {
-        let infinite = if lo { s == "-inf" } else { s == "inf" || s == "+inf" };
-        if infinite {
-            if !open {
-                return Err(err("an infinite end is open"));
-            }
-            return Ok((quote!(#krate::param::Bound::Unbounded), if lo { f64::NEG_INFINITY } else { f64::INFINITY }));
+    let (lo, hi) = saltus_interval::parse(&lit.value()).map_err(|e| syn::Error::new(lit.span(), e))?;
+    let bound = |e| match e {
+        saltus_interval::End::Unbounded => quote!(#krate::param::Bound::Unbounded),
+        saltus_interval::End::Open(x) => {
+            let l = proc_macro2::Literal::f64_suffixed(x);
+            quote!(#krate::param::Bound::Open(#l))
         }
-        let x: f64 = s.parse().map_err(|_| err(&format!("`{s}` is not a number")))?;
-        if !x.is_finite() {
-            return Err(err(&format!("`{s}` is not finite")));
+        saltus_interval::End::Closed(x) => {
+            let l = proc_macro2::Literal::f64_suffixed(x);
+            quote!(#krate::param::Bound::Closed(#l))
         }
-        let l = proc_macro2::Literal::f64_suffixed(x);
-        Ok((if open { quote!(#krate::param::Bound::Open(#l)) } else { quote!(#krate::param::Bound::Closed(#l)) }, x))
     };
-    let (lo, a) = bound(parts[0], true, open_lo)?;
-    let (hi, b) = bound(parts[1], false, open_hi)?;
-    if a >= b {
-        return Err(err("the lower end must be below the upper end"));
-    }
+    let (lo, hi) = (bound(lo), bound(hi));
     Ok(quote!(#krate::param::ParamRange { lo: #lo, hi: #hi }))
 }
 
