@@ -21,6 +21,7 @@
 use rayon::prelude::*;
 
 use super::contact::{contact_force, cross, ContactInput, ContactLaw};
+use super::cylinders::{HalfCylinders, Sphere, Touches, MAX_TOUCHES};
 use super::granular::{contact_values, spread, ContactSums, End, Slices, WallRecord, GROUP};
 use super::neighbours::NeighbourList;
 use super::particles::{Box3, Particles};
@@ -48,6 +49,10 @@ type Touch = ([f64; 3], [f64; 3], [f64; 3], f64);
 
 /// Most walls a scene can have (bottom and two side walls).
 pub const MAX_WALLS: usize = 3;
+
+/// Contacts of one mobile particle recorded for the granular fields besides its pairs:
+/// the walls', then the half-cylinders' ([`super::cylinders`]).
+pub const RECORD_SLOTS: usize = MAX_WALLS + MAX_TOUCHES;
 
 /// What the force of one listed pair reads, as slices: borrowed once per step, so that
 /// the pair loop, inlined, keeps their addresses in registers instead of reloading them
@@ -144,6 +149,13 @@ pub struct Dem {
     ext_torque: [Vec<f64>; 3],
     /// history of the wall contacts of each mobile particle
     wall_hist: Vec<[[f64; 3]; MAX_WALLS]>,
+    /// the half-cylinders of the bottom, if any
+    #[serde(default)]
+    cylinders: Option<HalfCylinders>,
+    /// history of the cylinder contacts of each mobile particle (sized with the mobile
+    /// particles whether or not there are cylinders: the integration zips it)
+    #[serde(default)]
+    cyl_hist: Vec<Touches>,
     // per-step scratch, resized by every step: not part of a checkpoint
     #[serde(skip)]
     pair_f: Vec<[f64; 3]>,
@@ -174,11 +186,25 @@ impl Dem {
             ext: [vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]],
             ext_torque: [vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]],
             wall_hist: vec![[[0.0; 3]; MAX_WALLS]; nm],
+            cylinders: None,
+            cyl_hist: vec![Touches::default(); nm],
             pair_f: Vec::new(),
             pair_t: Vec::new(),
             contact: ContactSums::default(),
             rebuild_due: true,
         }
+    }
+
+    /// The same engine with the half-cylinders `c` as its bottom (fixed, with the flat
+    /// walls).
+    pub fn with_cylinders(mut self, c: Option<HalfCylinders>) -> Self {
+        self.cylinders = c;
+        self
+    }
+
+    /// The half-cylinders of the bottom, if any.
+    pub fn cylinders(&self) -> Option<&HalfCylinders> {
+        self.cylinders.as_ref()
     }
 
     /// Particles.
@@ -221,6 +247,8 @@ impl Dem {
         }
         self.wall_hist.clear();
         self.wall_hist.resize(nm, [[0.0; 3]; MAX_WALLS]);
+        self.cyl_hist.clear();
+        self.cyl_hist.resize(nm, Touches::default());
         self.list.forget();
         self.rebuild_due = true;
     }
@@ -235,6 +263,10 @@ impl Dem {
     pub fn step_sampled(&mut self, slices: Option<Slices>) {
         if self.rebuild_due || self.list.x0.len() != self.p.len() {
             self.list.build(&mut self.p, &self.bx);
+        }
+        if self.cyl_hist.len() != self.p.n_mobile {
+            // a checkpoint from before the cylinders holds none
+            self.cyl_hist.resize(self.p.n_mobile, Touches::default());
         }
         if let Some(s) = slices {
             self.contact.prepare(s, self.list.len(), self.p.n_mobile);
@@ -321,6 +353,7 @@ impl Dem {
         let body = self.body;
         let law = &self.law;
         let walls = &self.walls;
+        let cylinders = self.cylinders.as_ref();
         let l = &self.list;
         let (pf, pt) = (&self.pair_f, &self.pair_t);
         let ext = &self.ext;
@@ -338,6 +371,7 @@ impl Dem {
         let vel = (chunks(&mut p.vx, nm), chunks(&mut p.vy, nm), chunks(&mut p.vz, nm));
         let spin = (chunks(&mut p.wx, nm), chunks(&mut p.wy, nm), chunks(&mut p.wz, nm));
         let wall_hist = self.wall_hist[..nm].par_chunks_mut(CHUNK);
+        let cyl_hist = self.cyl_hist[..nm].par_chunks_mut(CHUNK);
         // the wall contacts' records of a sampled step, none otherwise
         let recorded = if sampled { nm } else { 0 };
         let unrecorded = nm.div_ceil(CHUNK) - recorded.div_ceil(CHUNK);
@@ -345,10 +379,10 @@ impl Dem {
             .par_chunks_mut(CHUNK)
             .map(Some)
             .chain((0..unrecorded).into_par_iter().map(|_| None));
-        (pos.into_par_iter(), vel.into_par_iter(), spin.into_par_iter(), wall_hist, records)
+        (pos.into_par_iter(), vel.into_par_iter(), spin.into_par_iter(), wall_hist, cyl_hist, records)
             .into_par_iter()
             .enumerate()
-            .map(|(c, ((x, y, z), (vx, vy, vz), (wx, wy, wz), wh, mut rec))| {
+            .map(|(c, ((x, y, z), (vx, vy, vz), (wx, wy, wz), wh, ch, mut rec))| {
                 let o = c * CHUNK;
                 let mut moved = false;
                 for k in 0..x.len() {
@@ -399,6 +433,23 @@ impl Dem {
                             t[c] += ra * tw[c];
                         }
                     }
+                    if let Some(cyl) = cylinders {
+                        let s = Sphere {
+                            x: pos,
+                            v: [vx[k], vy[k], vz[k]],
+                            w: [wx[k], wy[k], wz[k]],
+                            r: ra,
+                            sqrt_m: (1.0 / inv_m[a]).sqrt(),
+                        };
+                        cyl.add_forces(&s, law, dt, &mut ch[k], &mut f, &mut t, |slot, (arm, fc, power)| {
+                            if let Some(rec) = rec.as_deref_mut() {
+                                let values = contact_values(arm, fc, s.v, [0.0; 3], power, 0.5);
+                                let r: &mut WallRecord = &mut rec[k][MAX_WALLS + slot];
+                                r[..3].copy_from_slice(&[pos[2], ra, pos[2] + arm[2]]);
+                                r[3..].copy_from_slice(&values);
+                            }
+                        });
+                    }
                     let im = inv_m[a];
                     let ii = inv_i[a];
                     vx[k] += (f[0] * im + body[0]) * dt;
@@ -440,6 +491,9 @@ impl Dem {
                 if delta > 0.0 {
                     e += 0.5 * self.law.kn * delta * delta;
                 }
+            }
+            if let Some(c) = &self.cylinders {
+                e += c.normal_spring_energy(pos, p.radius[a], self.law.kn);
             }
         }
         e
