@@ -131,6 +131,9 @@ pub struct Dem {
     bx: Box3,
     /// contact law
     law: ContactLaw,
+    /// contact law against the flat walls (the particle law with the wall friction)
+    #[serde(default)]
+    wall_law: Option<ContactLaw>,
     /// flat walls
     walls: Vec<Wall>,
     /// body acceleration of mobile particles: gravity and buoyancy (m/s^2)
@@ -177,6 +180,7 @@ impl Dem {
             p,
             bx,
             law,
+            wall_law: None,
             walls,
             body,
             dt,
@@ -199,6 +203,13 @@ impl Dem {
     /// walls).
     pub fn with_cylinders(mut self, c: Option<HalfCylinders>) -> Self {
         self.cylinders = c;
+        self
+    }
+
+    /// The same engine with a friction coefficient of the particles on the flat walls
+    /// other than the particle law's (None: the particle law's).
+    pub fn with_wall_friction(mut self, mu: Option<f64>) -> Self {
+        self.wall_law = mu.map(|m| ContactLaw { friction: m, ..self.law });
         self
     }
 
@@ -352,6 +363,7 @@ impl Dem {
         let dt = self.dt;
         let body = self.body;
         let law = &self.law;
+        let wall_law = self.wall_law.as_ref().unwrap_or(law);
         let walls = &self.walls;
         let cylinders = self.cylinders.as_ref();
         let l = &self.list;
@@ -418,7 +430,7 @@ impl Dem {
                         let spin = cross([ra * wx[k], ra * wy[k], ra * wz[k]], n);
                         let v_rel = [-vx[k] - spin[0], -vy[k] - spin[1], -vz[k] - spin[2]];
                         let c = ContactInput { n, delta, v_rel, sqrt_m: (1.0 / inv_m[a]).sqrt(), r_eff: ra };
-                        let (fw, power) = contact_force(law, &c, h, dt);
+                        let (fw, power) = contact_force(wall_law, &c, h, dt);
                         let tw = cross(n, fw);
                         if let Some(rec) = rec.as_deref_mut() {
                             // branch from the centre to the wall plane, the wall at rest
