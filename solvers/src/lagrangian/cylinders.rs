@@ -66,9 +66,10 @@ impl HalfCylinders {
         self.spacing * self.z.len() as f64
     }
 
-    /// The force and torque of the cylinders on sphere `s` (added to `f` and `t`), with
-    /// the tangential springs in `hist` updated (a spring is forgotten when its contact
-    /// ends); `each` sees every contact (for the granular fields).
+    /// Add the force and torque of the cylinders on sphere `s` to `ft` (contact by
+    /// contact, in axis order), with the tangential springs in `hist` updated (a spring
+    /// is forgotten when its contact ends); `each` sees every contact with its history
+    /// slot (for the granular fields).
     #[inline]
     pub fn add_forces(
         &self,
@@ -76,10 +77,10 @@ impl HalfCylinders {
         law: &ContactLaw,
         dt: f64,
         hist: &mut Touches,
-        f: &mut [f64; 3],
-        t: &mut [f64; 3],
+        ft: (&mut [f64; 3], &mut [f64; 3]),
         mut each: impl FnMut(usize, CylinderTouch),
     ) {
+        let (f, t) = ft;
         let n_cyl = self.z.len();
         if n_cyl == 0 {
             return;

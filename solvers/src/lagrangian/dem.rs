@@ -453,7 +453,7 @@ impl Dem {
                             r: ra,
                             sqrt_m: (1.0 / inv_m[a]).sqrt(),
                         };
-                        cyl.add_forces(&s, law, dt, &mut ch[k], &mut f, &mut t, |slot, (arm, fc, power)| {
+                        cyl.add_forces(&s, law, dt, &mut ch[k], (&mut f, &mut t), |slot, (arm, fc, power)| {
                             if let Some(rec) = rec.as_deref_mut() {
                                 let values = contact_values(arm, fc, s.v, [0.0; 3], power, 0.5);
                                 let r: &mut WallRecord = &mut rec[k][MAX_WALLS + slot];
