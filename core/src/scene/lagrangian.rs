@@ -24,7 +24,31 @@ pub enum Bottom {
     None,
     /// periodic in z with period `height`
     Periodic,
+    /// the bottom of Maurin et al. 2015's own quasi-2D runs (section III B: "the bottom
+    /// made of fixed particles is randomly generated with the experimental
+    /// characteristics" of section III A): fixed beads side by side, one per diameter
+    /// along x (and per diameter across), centres at d plus a random elevation of the
+    /// Frey set ([`FREY_LEVELS`]), above a flat wall at z = 0
+    BeadRow,
+    /// the bottom of Frey's experiment (Maurin et al. 2015 section III A): half-cylinders
+    /// of diameter d, axes across the channel (along y), side by side along x, axes at d
+    /// plus a random elevation of the Frey set ([`FREY_LEVELS`]), above a flat wall at
+    /// z = 0
+    HalfCylinders,
 }
+
+impl Bottom {
+    /// A bottom of fixed elements at random elevations of the Frey set (`bead_row`,
+    /// `half_cylinders`): the fluid column starts at their mean elevation, d.
+    pub fn is_frey(&self) -> bool {
+        matches!(self, Bottom::BeadRow | Bottom::HalfCylinders)
+    }
+}
+
+/// Elevation levels of the Frey bottom (Maurin et al. 2015 section III A): "a random
+/// elevation between -2.75 mm and 2.75 mm with steps of 0.5 mm" for d = 6 mm, i.e.
+/// (k - 5.5) d / 12 for k = 0..11, drawn uniformly (scaled with d for other grains).
+pub const FREY_LEVELS: usize = 12;
 
 /// How the particles start.
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
@@ -398,11 +422,23 @@ impl LagrangianSettings {
                     ));
                 }
                 if matches!(self.bottom, Bottom::None | Bottom::Periodic) {
-                    return Err(key_error(f, &p("bottom"), "a deposited bed needs bottom = \"rough\" or \"wall\""));
+                    return Err(key_error(
+                        f,
+                        &p("bottom"),
+                        "a deposited bed needs bottom = \"rough\", \"wall\", \"bead_row\" or \"half_cylinders\"",
+                    ));
                 }
                 self.particles.map_or(count(c.bed_height + (self.rough_layer + 2.0) * c.d, c.bed_phi), |n| n as f64)
             }
             Initial::Gas => {
+                if self.bottom.is_frey() {
+                    // the gas lattice fills the box from z = 0, through the fixed elements
+                    return Err(key_error(
+                        f,
+                        &p("bottom"),
+                        "a gas fills the box from z = 0; use bottom = \"wall\", \"none\" or \"periodic\" with initial = \"gas\"",
+                    ));
+                }
                 check(f, &p("gas_phi"), self.gas_phi, ParamRange::open(0.0, 0.5))?;
                 check(f, &p("gas_temperature"), self.gas_temperature, ParamRange::positive())?;
                 check(f, &p("height"), self.height, ParamRange::open_closed(2.0 * cut, MAX_SIDE_DIAMETERS * c.d))?;

@@ -28,7 +28,9 @@ use crate::param::ParamRange;
 
 pub use closures::{closure_from_value, de_concrete, granular_from_value, Closures, DEFAULT_MODELS};
 pub use domain::{Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT, MAX_STRETCH_DECADES};
-pub use lagrangian::{Case, DragVelocity, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, MAX_PARTICLES, MAX_SIDE_DIAMETERS};
+pub use lagrangian::{
+    Case, DragVelocity, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, FREY_LEVELS, MAX_PARTICLES, MAX_SIDE_DIAMETERS,
+};
 pub use overrides::{apply_override, parse_table};
 pub use solver::{
     default_elastic_phi_rlp, Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver,

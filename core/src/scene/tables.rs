@@ -138,6 +138,11 @@ pub struct Particles {
     /// interparticle friction coefficient mu_p (same default and inheritance)
     #[serde(default = "default_friction")]
     pub friction: f64,
+    /// friction coefficient of the particles on the flat walls (DEM side walls and flat
+    /// bottom); default the interparticle friction (Maurin's YADE script of the Frey
+    /// runs gives the walls the beads' material, friction 0.4)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wall_friction: Option<f64>,
     /// contact law (DEM)
     #[serde(default)]
     pub contact: Contact,
@@ -174,6 +179,9 @@ impl Particles {
         check(f, "particles.density", self.density, ParamRange::closed(1e-3, 1e5))?;
         check(f, "particles.restitution", self.restitution, ParamRange::open_closed(0.0, 1.0))?;
         check(f, "particles.friction", self.friction, ParamRange::closed(0.0, 2.0))?;
+        if let Some(mu) = self.wall_friction {
+            check(f, "particles.wall_friction", mu, ParamRange::closed(0.0, 2.0))?;
+        }
         let c = &self.contact;
         if let Some(k) = c.stiffness {
             check(f, "particles.contact.stiffness", k, ParamRange::closed(1e-6, 1e12))?;
@@ -353,8 +361,14 @@ mod tests {
 
     #[test]
     fn rigid_stiffness_of_chassagne_case_1_is_the_validated_1e4() {
-        let p =
-            Particles { diameter: 6e-3, density: 2500.0, restitution: 0.7, friction: 0.4, contact: Contact::default() };
+        let p = Particles {
+            diameter: 6e-3,
+            density: 2500.0,
+            restitution: 0.7,
+            friction: 0.4,
+            wall_friction: None,
+            contact: Contact::default(),
+        };
         // (2500 - 1000) 9.81 0.6 0.075 Pa x 6e-3 m / 4e-4 = 9.93e3, rounded up
         assert_eq!(p.rigid_stiffness(1000.0, 9.81, 0.6, 0.075), Some(1.0e4));
         assert_eq!(p.rigid_stiffness(1000.0, 0.0, 0.6, 0.075), None);

@@ -108,14 +108,15 @@ impl Config {
         Ok(Config { domain, settings })
     }
 
-    /// Height of the rough layer (m): `rough_layer` d with a rough bottom, else 0. The
-    /// fluid column starts there.
+    /// Height of the rough layer (m): `rough_layer` d with a rough bottom, d (the mean
+    /// elevation of its elements) with a Frey bottom, else 0. The fluid column starts
+    /// there.
     pub fn rough_height(&self, d: f64) -> f64 {
         let l = &self.settings.numerics;
-        if l.bottom == Bottom::Rough {
-            l.rough_layer * d
-        } else {
-            0.0
+        match l.bottom {
+            Bottom::Rough => l.rough_layer * d,
+            b if b.is_frey() => d,
+            _ => 0.0,
         }
     }
 

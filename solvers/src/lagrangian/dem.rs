@@ -21,6 +21,7 @@
 use rayon::prelude::*;
 
 use super::contact::{contact_force, cross, ContactInput, ContactLaw};
+use super::cylinders::{HalfCylinders, Sphere, Touches, MAX_TOUCHES};
 use super::granular::{contact_values, spread, ContactSums, End, Slices, WallRecord, GROUP};
 use super::neighbours::NeighbourList;
 use super::particles::{Box3, Particles};
@@ -48,6 +49,10 @@ type Touch = ([f64; 3], [f64; 3], [f64; 3], f64);
 
 /// Most walls a scene can have (bottom and two side walls).
 pub const MAX_WALLS: usize = 3;
+
+/// Contacts of one mobile particle recorded for the granular fields besides its pairs:
+/// the walls', then the half-cylinders' ([`super::cylinders`]).
+pub const RECORD_SLOTS: usize = MAX_WALLS + MAX_TOUCHES;
 
 /// What the force of one listed pair reads, as slices: borrowed once per step, so that
 /// the pair loop, inlined, keeps their addresses in registers instead of reloading them
@@ -126,6 +131,9 @@ pub struct Dem {
     bx: Box3,
     /// contact law
     law: ContactLaw,
+    /// contact law against the flat walls (the particle law with the wall friction)
+    #[serde(default)]
+    wall_law: Option<ContactLaw>,
     /// flat walls
     walls: Vec<Wall>,
     /// body acceleration of mobile particles: gravity and buoyancy (m/s^2)
@@ -144,6 +152,13 @@ pub struct Dem {
     ext_torque: [Vec<f64>; 3],
     /// history of the wall contacts of each mobile particle
     wall_hist: Vec<[[f64; 3]; MAX_WALLS]>,
+    /// the half-cylinders of the bottom, if any
+    #[serde(default)]
+    cylinders: Option<HalfCylinders>,
+    /// history of the cylinder contacts of each mobile particle (sized with the mobile
+    /// particles whether or not there are cylinders: the integration zips it)
+    #[serde(default)]
+    cyl_hist: Vec<Touches>,
     // per-step scratch, resized by every step: not part of a checkpoint
     #[serde(skip)]
     pair_f: Vec<[f64; 3]>,
@@ -165,6 +180,7 @@ impl Dem {
             p,
             bx,
             law,
+            wall_law: None,
             walls,
             body,
             dt,
@@ -174,11 +190,32 @@ impl Dem {
             ext: [vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]],
             ext_torque: [vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]],
             wall_hist: vec![[[0.0; 3]; MAX_WALLS]; nm],
+            cylinders: None,
+            cyl_hist: vec![Touches::default(); nm],
             pair_f: Vec::new(),
             pair_t: Vec::new(),
             contact: ContactSums::default(),
             rebuild_due: true,
         }
+    }
+
+    /// The same engine with the half-cylinders `c` as its bottom (fixed, with the flat
+    /// walls).
+    pub fn with_cylinders(mut self, c: Option<HalfCylinders>) -> Self {
+        self.cylinders = c;
+        self
+    }
+
+    /// The same engine with a friction coefficient of the particles on the flat walls
+    /// other than the particle law's (None: the particle law's).
+    pub fn with_wall_friction(mut self, mu: Option<f64>) -> Self {
+        self.wall_law = mu.map(|m| ContactLaw { friction: m, ..self.law });
+        self
+    }
+
+    /// The half-cylinders of the bottom, if any.
+    pub fn cylinders(&self) -> Option<&HalfCylinders> {
+        self.cylinders.as_ref()
     }
 
     /// Particles.
@@ -221,6 +258,8 @@ impl Dem {
         }
         self.wall_hist.clear();
         self.wall_hist.resize(nm, [[0.0; 3]; MAX_WALLS]);
+        self.cyl_hist.clear();
+        self.cyl_hist.resize(nm, Touches::default());
         self.list.forget();
         self.rebuild_due = true;
     }
@@ -235,6 +274,10 @@ impl Dem {
     pub fn step_sampled(&mut self, slices: Option<Slices>) {
         if self.rebuild_due || self.list.x0.len() != self.p.len() {
             self.list.build(&mut self.p, &self.bx);
+        }
+        if self.cyl_hist.len() != self.p.n_mobile {
+            // a checkpoint from before the cylinders holds none
+            self.cyl_hist.resize(self.p.n_mobile, Touches::default());
         }
         if let Some(s) = slices {
             self.contact.prepare(s, self.list.len(), self.p.n_mobile);
@@ -320,7 +363,9 @@ impl Dem {
         let dt = self.dt;
         let body = self.body;
         let law = &self.law;
+        let wall_law = self.wall_law.as_ref().unwrap_or(law);
         let walls = &self.walls;
+        let cylinders = self.cylinders.as_ref();
         let l = &self.list;
         let (pf, pt) = (&self.pair_f, &self.pair_t);
         let ext = &self.ext;
@@ -338,6 +383,7 @@ impl Dem {
         let vel = (chunks(&mut p.vx, nm), chunks(&mut p.vy, nm), chunks(&mut p.vz, nm));
         let spin = (chunks(&mut p.wx, nm), chunks(&mut p.wy, nm), chunks(&mut p.wz, nm));
         let wall_hist = self.wall_hist[..nm].par_chunks_mut(CHUNK);
+        let cyl_hist = self.cyl_hist[..nm].par_chunks_mut(CHUNK);
         // the wall contacts' records of a sampled step, none otherwise
         let recorded = if sampled { nm } else { 0 };
         let unrecorded = nm.div_ceil(CHUNK) - recorded.div_ceil(CHUNK);
@@ -345,10 +391,10 @@ impl Dem {
             .par_chunks_mut(CHUNK)
             .map(Some)
             .chain((0..unrecorded).into_par_iter().map(|_| None));
-        (pos.into_par_iter(), vel.into_par_iter(), spin.into_par_iter(), wall_hist, records)
+        (pos.into_par_iter(), vel.into_par_iter(), spin.into_par_iter(), wall_hist, cyl_hist, records)
             .into_par_iter()
             .enumerate()
-            .map(|(c, ((x, y, z), (vx, vy, vz), (wx, wy, wz), wh, mut rec))| {
+            .map(|(c, ((x, y, z), (vx, vy, vz), (wx, wy, wz), wh, ch, mut rec))| {
                 let o = c * CHUNK;
                 let mut moved = false;
                 for k in 0..x.len() {
@@ -384,7 +430,7 @@ impl Dem {
                         let spin = cross([ra * wx[k], ra * wy[k], ra * wz[k]], n);
                         let v_rel = [-vx[k] - spin[0], -vy[k] - spin[1], -vz[k] - spin[2]];
                         let c = ContactInput { n, delta, v_rel, sqrt_m: (1.0 / inv_m[a]).sqrt(), r_eff: ra };
-                        let (fw, power) = contact_force(law, &c, h, dt);
+                        let (fw, power) = contact_force(wall_law, &c, h, dt);
                         let tw = cross(n, fw);
                         if let Some(rec) = rec.as_deref_mut() {
                             // branch from the centre to the wall plane, the wall at rest
@@ -398,6 +444,23 @@ impl Dem {
                             f[c] += fw[c];
                             t[c] += ra * tw[c];
                         }
+                    }
+                    if let Some(cyl) = cylinders {
+                        let s = Sphere {
+                            x: pos,
+                            v: [vx[k], vy[k], vz[k]],
+                            w: [wx[k], wy[k], wz[k]],
+                            r: ra,
+                            sqrt_m: (1.0 / inv_m[a]).sqrt(),
+                        };
+                        cyl.add_forces(&s, law, dt, &mut ch[k], (&mut f, &mut t), |slot, (arm, fc, power)| {
+                            if let Some(rec) = rec.as_deref_mut() {
+                                let values = contact_values(arm, fc, s.v, [0.0; 3], power, 0.5);
+                                let r: &mut WallRecord = &mut rec[k][MAX_WALLS + slot];
+                                r[..3].copy_from_slice(&[pos[2], ra, pos[2] + arm[2]]);
+                                r[3..].copy_from_slice(&values);
+                            }
+                        });
                     }
                     let im = inv_m[a];
                     let ii = inv_i[a];
@@ -440,6 +503,9 @@ impl Dem {
                 if delta > 0.0 {
                     e += 0.5 * self.law.kn * delta * delta;
                 }
+            }
+            if let Some(c) = &self.cylinders {
+                e += c.normal_spring_energy(pos, p.radius[a], self.law.kn);
             }
         }
         e

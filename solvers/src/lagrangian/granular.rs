@@ -87,7 +87,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::averaging::sphere_slices;
-use super::dem::{CHUNK, MAX_WALLS};
+use super::dem::{CHUNK, RECORD_SLOTS};
 use super::particles::Particles;
 use super::stats::Stats;
 
@@ -242,8 +242,8 @@ pub struct ContactSums {
     pub slices: Slices,
     /// one slab of `slices.n` x [`CONTACT_FIELDS`] per group of [`GROUP`] pairs
     pub slabs: Vec<f64>,
-    /// the wall contacts of each mobile particle
-    pub walls: Vec<[WallRecord; MAX_WALLS]>,
+    /// the wall (and half-cylinder) contacts of each mobile particle
+    pub walls: Vec<[WallRecord; RECORD_SLOTS]>,
 }
 
 impl ContactSums {
@@ -253,7 +253,7 @@ impl ContactSums {
         self.slabs.clear();
         self.slabs.resize(pairs.div_ceil(GROUP).max(1) * slices.n * CONTACT_FIELDS, 0.0);
         self.walls.clear();
-        self.walls.resize(mobile, [[0.0; CONTACT_FIELDS + 3]; MAX_WALLS]);
+        self.walls.resize(mobile, [[0.0; CONTACT_FIELDS + 3]; RECORD_SLOTS]);
     }
 
     /// Length of one slab.

@@ -6,6 +6,7 @@ pub mod blocking;
 mod checkpoint;
 pub mod config;
 pub mod contact;
+pub mod cylinders;
 pub mod dem;
 mod deposition;
 pub mod drag;
@@ -22,6 +23,7 @@ pub mod vtk;
 
 pub use config::{Bottom, Config, Domain, FluidMode, Initial, Settings, Surface};
 pub use contact::{ContactLaw, ContactModel};
+pub use cylinders::HalfCylinders;
 pub use dem::{Dem, Wall};
 pub use neighbours::NeighbourList;
 pub use particles::{Box3, Particles};

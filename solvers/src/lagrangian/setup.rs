@@ -9,18 +9,30 @@
 //! fixed, and everything is lowered so that the lowest fixed sphere touches z = 0. The
 //! flat wall stays at z = 0 as a backstop. Every random draw comes from streams derived
 //! from the scene seed.
+//!
+//! Frey bottoms (Maurin et al. 2015 section III A-B): `bead_row` puts fixed beads of
+//! diameter d side by side, one per diameter along x and across, `half_cylinders` puts
+//! cylinders of diameter d with axes across the channel ([`super::cylinders`]); both at
+//! z = d plus an elevation drawn uniformly from (k - 5.5) d / 12, k = 0..11 (the paper's
+//! -2.75 to 2.75 mm in steps of 0.5 mm for d = 6 mm), the column starting at their mean
+//! elevation d. The bed is released above them (from 2 d) and deposited; nothing is
+//! removed or fixed after the deposition.
 
 use rand::Rng as _;
 use rand_distr::{Distribution, StandardNormal};
 use saltus_core::rng::stream;
+use saltus_core::scene::FREY_LEVELS;
 use saltus_core::Error;
 
 use super::config::{Bottom, Config, FluidMode, Initial};
+use super::cylinders::HalfCylinders;
 use super::dem::Wall;
 use super::particles::{Box3, Particles};
 
 /// Stream numbers of the set-up draws, far from the per-particle streams.
 const SETUP_STREAM: u64 = u64::MAX - 16;
+/// Stream of the elevations of a Frey bottom (its own, so the lattice keeps its draws).
+const FREY_STREAM: u64 = u64::MAX - 17;
 
 /// Physical data the set-up needs.
 #[derive(Clone, Copy, Debug)]
@@ -53,7 +65,7 @@ pub fn make_box(cfg: &Config) -> Box3 {
 pub fn make_walls(cfg: &Config) -> Vec<Wall> {
     let dm = &cfg.domain;
     let mut w = Vec::new();
-    if matches!(cfg.settings.numerics.bottom, Bottom::Rough | Bottom::Wall) {
+    if matches!(cfg.settings.numerics.bottom, Bottom::Rough | Bottom::Wall | Bottom::BeadRow | Bottom::HalfCylinders) {
         w.push(Wall { axis: 2, position: 0.0, sign: 1.0 });
     }
     if cfg.settings.numerics.side_walls {
@@ -82,6 +94,47 @@ pub fn bed_counts(cfg: &Config, m: &Material) -> (usize, usize, usize) {
     }
 }
 
+/// `n` elevations of a Frey bottom above z = 0 (m): d + (k - 5.5) d / 12, k drawn
+/// uniformly in 0..12 (Maurin et al. 2015 section III A), from the scene seed.
+pub fn frey_elevations(n: usize, d: f64, seed: u64) -> Vec<f64> {
+    let mut rng = stream(seed, FREY_STREAM);
+    let levels = FREY_LEVELS as f64;
+    (0..n)
+        .map(|_| {
+            let k = rng.gen_range(0..FREY_LEVELS) as f64;
+            d + (k - 0.5 * (levels - 1.0)) * d / levels
+        })
+        .collect()
+}
+
+/// Elements of a Frey bottom along a side of `length` (m): one per diameter, at least one.
+fn frey_count(length: f64, d: f64) -> usize {
+    ((length / d).floor() as usize).max(1)
+}
+
+/// The half-cylinders of `bottom = "half_cylinders"`, None for other bottoms.
+pub fn half_cylinders(cfg: &Config, m: &Material, seed: u64) -> Option<HalfCylinders> {
+    (cfg.settings.numerics.bottom == Bottom::HalfCylinders).then(|| {
+        let n = frey_count(cfg.domain.length, m.d);
+        HalfCylinders { radius: 0.5 * m.d, spacing: cfg.domain.length / n as f64, z: frey_elevations(n, m.d, seed) }
+    })
+}
+
+/// Push the fixed beads of `bottom = "bead_row"`: one per diameter along x and across
+/// (centred between side walls), at the Frey elevations.
+fn push_bead_row(p: &mut Particles, cfg: &Config, m: &Material, seed: u64) {
+    let dm = &cfg.domain;
+    let (nx, ny) = (frey_count(dm.length, m.d), frey_count(dm.width, m.d));
+    let (sx, sy) = (dm.length / nx as f64, dm.width / ny as f64);
+    let z = frey_elevations(nx * ny, m.d, seed);
+    for iy in 0..ny {
+        for ix in 0..nx {
+            let pos = [(ix as f64 + 0.5) * sx, (iy as f64 + 0.5) * sy, z[iy * nx + ix]];
+            p.push(pos, [0.0; 3], [0.0; 3], 0.5 * m.d, m.rho_p, true);
+        }
+    }
+}
+
 /// Initial particles of the scene (before any deposition).
 pub fn initial_particles(cfg: &Config, m: &Material, seed: u64, file: &str) -> Result<Particles, Error> {
     let dm = &cfg.domain;
@@ -90,8 +143,14 @@ pub fn initial_particles(cfg: &Config, m: &Material, seed: u64, file: &str) -> R
     let mut p = Particles::default();
     match cfg.settings.numerics.initial {
         Initial::List => {
-            for s in &cfg.settings.numerics.particle_list {
-                p.push(s.position, s.velocity, s.angular_velocity, r, m.rho_p, s.fixed);
+            for s in cfg.settings.numerics.particle_list.iter().filter(|s| !s.fixed) {
+                p.push(s.position, s.velocity, s.angular_velocity, r, m.rho_p, false);
+            }
+            if cfg.settings.numerics.bottom == Bottom::BeadRow {
+                push_bead_row(&mut p, cfg, m, seed);
+            }
+            for s in cfg.settings.numerics.particle_list.iter().filter(|s| s.fixed) {
+                p.push(s.position, s.velocity, s.angular_velocity, r, m.rho_p, true);
             }
         }
         Initial::Bed => {
@@ -108,13 +167,15 @@ pub fn initial_particles(cfg: &Config, m: &Material, seed: u64, file: &str) -> R
                 (dm.length / nx as f64, if cfg.settings.numerics.side_walls { a } else { dm.width / ny as f64 });
             let per_layer = nx * ny;
             let jitter = 0.02 * m.d;
+            // released above a Frey bottom, whose tops reach 1.96 d
+            let floor = if cfg.settings.numerics.bottom.is_frey() { 2.0 * m.d } else { 0.0 };
             for k in 0..n {
                 let (layer, in_layer) = (k / per_layer, k % per_layer);
                 let (ix, iy) = (in_layer % nx, in_layer / nx);
                 let mut pos = [
                     (ix as f64 + 0.5) * sx + jitter * (2.0 * rng.gen::<f64>() - 1.0),
                     y0 + if cfg.settings.numerics.side_walls { iy as f64 * sy } else { (iy as f64 + 0.5) * sy },
-                    r + 0.05 * m.d + layer as f64 * a,
+                    floor + r + 0.05 * m.d + layer as f64 * a,
                 ];
                 if !cfg.settings.numerics.side_walls {
                     pos[1] += jitter * (2.0 * rng.gen::<f64>() - 1.0);
@@ -124,6 +185,9 @@ pub fn initial_particles(cfg: &Config, m: &Material, seed: u64, file: &str) -> R
                 let s = cfg.settings.numerics.size_dispersion;
                 let radius = if s > 0.0 { r * (1.0 + s * (2.0 * rng.gen::<f64>() - 1.0)) } else { r };
                 p.push(pos, v, [0.0; 3], radius, m.rho_p, false);
+            }
+            if cfg.settings.numerics.bottom == Bottom::BeadRow {
+                push_bead_row(&mut p, cfg, m, seed);
             }
         }
         Initial::Gas => {

@@ -150,7 +150,9 @@ impl<'a> Lagrangian<'a> {
             rho_p,
             scene.physics.pressure_gradient,
         );
-        let dem = Dem::new(p, setup::make_box(&cfg), law, setup::make_walls(&cfg), body, dt, s.numerics.skin * d);
+        let dem = Dem::new(p, setup::make_box(&cfg), law, setup::make_walls(&cfg), body, dt, s.numerics.skin * d)
+            .with_cylinders(setup::half_cylinders(&cfg, &mat, scene.seed))
+            .with_wall_friction(scene.particles.wall_friction);
         let n = dem.p.len();
         let mut forces = FluidForces::new(n, scene.seed, scene.fluid.density, scene.fluid.viscosity, rho_p);
         forces.fallback_period = s.numerics.fluid_period;
