@@ -20,9 +20,10 @@
 
 use rayon::prelude::*;
 
-use super::contact::{contact_force, cross, ContactInput, ContactLaw};
+use super::contact::{contact_force, cross, ContactInput, ContactLaw, ContactModel};
 use super::granular::{contact_values, spread, ContactSums, End, Slices, WallRecord, GROUP};
 use super::neighbours::NeighbourList;
+use super::pairs::{Contact, Touching};
 use super::particles::{Box3, Particles};
 
 /// Particles per parallel work item: large enough to amortise scheduling, small enough
@@ -52,18 +53,18 @@ pub const MAX_WALLS: usize = 3;
 /// What the force of one listed pair reads, as slices: borrowed once per step, so that
 /// the pair loop, inlined, keeps their addresses in registers instead of reloading them
 /// through the particle and list structures for every pair.
-struct PairView<'a> {
-    x: [&'a [f64]; 3],
-    v: [&'a [f64]; 3],
-    w: [&'a [f64]; 3],
-    radius: &'a [f64],
-    i: &'a [u32],
-    j: &'a [u32],
-    shift: &'a [[f64; 3]],
-    sqrt_m: &'a [f64],
-    r_eff: &'a [f64],
-    law: &'a ContactLaw,
-    dt: f64,
+pub(super) struct PairView<'a> {
+    pub(super) x: [&'a [f64]; 3],
+    pub(super) v: [&'a [f64]; 3],
+    pub(super) w: [&'a [f64]; 3],
+    pub(super) radius: &'a [f64],
+    pub(super) i: &'a [u32],
+    pub(super) j: &'a [u32],
+    pub(super) shift: &'a [[f64; 3]],
+    pub(super) sqrt_m: &'a [f64],
+    pub(super) r_eff: &'a [f64],
+    pub(super) law: &'a ContactLaw,
+    pub(super) dt: f64,
 }
 
 impl PairView<'_> {
@@ -149,6 +150,8 @@ pub struct Dem {
     pair_f: Vec<[f64; 3]>,
     #[serde(skip)]
     pair_t: Vec<[f64; 3]>,
+    #[serde(skip)]
+    touching: Touching,
     /// the granular-field sums of the last sampled step ([`Dem::step_sampled`])
     #[serde(skip)]
     contact: ContactSums,
@@ -176,6 +179,7 @@ impl Dem {
             wall_hist: vec![[[0.0; 3]; MAX_WALLS]; nm],
             pair_f: Vec::new(),
             pair_t: Vec::new(),
+            touching: Touching::default(),
             contact: ContactSums::default(),
             rebuild_due: true,
         }
@@ -273,18 +277,25 @@ impl Dem {
         let (li, lj) = (&l.i, &l.j);
         let write =
             |q: usize, h: &mut [f64; 3], f_out: &mut [f64; 3], t_out: &mut [f64; 3]| view.write(q, h, f_out, t_out);
+        // the linear law in three passes, its force loop vectorised ([`super::pairs`])
+        let lanes = self.law.model == ContactModel::Linear;
+        let was = self.touching.prepare(l);
         if !sampled {
-            // each pair owns its history and its output slots: chunks of the three arrays
-            // zipped, pair q = chunk start + k
-            (l.hist.par_chunks_mut(CHUNK), self.pair_f.par_chunks_mut(CHUNK), self.pair_t.par_chunks_mut(CHUNK))
-                .into_par_iter()
-                .enumerate()
-                .for_each(|(c, (hist, pf, pt))| {
+            // each pair owns its history, its output slots and its flag: chunks of the
+            // four arrays zipped, pair q = chunk start + k
+            let pairs = (l.hist.par_chunks_mut(CHUNK), self.pair_f.par_chunks_mut(CHUNK));
+            (pairs, self.pair_t.par_chunks_mut(CHUNK), was.par_chunks_mut(CHUNK)).into_par_iter().enumerate().for_each(
+                |(c, ((hist, pf), pt, was))| {
                     let o = c * CHUNK;
+                    if lanes {
+                        view.linear_pairs(o, hist, pf, pt, was, |_| {});
+                        return;
+                    }
                     for (k, ((h, f_out), t_out)) in hist.iter_mut().zip(pf.iter_mut()).zip(pt.iter_mut()).enumerate() {
                         write(o + k, h, f_out, t_out);
                     }
-                });
+                },
+            );
             return;
         }
         // the same in groups of GROUP pairs, each adding its contacts to its own slab
@@ -294,20 +305,28 @@ impl Dem {
             l.hist.par_chunks_mut(GROUP),
             self.pair_f.par_chunks_mut(GROUP),
             self.pair_t.par_chunks_mut(GROUP),
+            was.par_chunks_mut(GROUP),
             cs.slabs.par_chunks_mut(slab_len.max(1)),
         )
             .into_par_iter()
             .enumerate()
-            .for_each(|(c, (hist, pf, pt, slab))| {
+            .for_each(|(c, (hist, pf, pt, was, slab))| {
                 let o = c * GROUP;
+                let mut add = |(q, d, f, power): Contact| {
+                    let (a, b) = (li[q] as usize, lj[q] as usize);
+                    let values =
+                        contact_values(d, f, [p.vx[a], p.vy[a], p.vz[a]], [p.vx[b], p.vy[b], p.vz[b]], power, 1.0);
+                    let ends = (End { z: p.z[a], r: p.radius[a] }, End { z: p.z[a] + d[2], r: p.radius[b] });
+                    spread(&slices, slab, ends.0, ends.1, &values);
+                };
+                if lanes {
+                    view.linear_pairs(o, hist, pf, pt, was, add);
+                    return;
+                }
                 for (k, ((h, f_out), t_out)) in hist.iter_mut().zip(pf.iter_mut()).zip(pt.iter_mut()).enumerate() {
                     let q = o + k;
                     if let Some((d, f, power)) = write(q, h, f_out, t_out) {
-                        let (a, b) = (li[q] as usize, lj[q] as usize);
-                        let values =
-                            contact_values(d, f, [p.vx[a], p.vy[a], p.vz[a]], [p.vx[b], p.vy[b], p.vz[b]], power, 1.0);
-                        let ends = (End { z: p.z[a], r: p.radius[a] }, End { z: p.z[a] + d[2], r: p.radius[b] });
-                        spread(&slices, slab, ends.0, ends.1, &values);
+                        add((q, d, f, power));
                     }
                 }
             });
