@@ -27,11 +27,16 @@ use super::contact::cross;
 use super::dem::{PairView, CHUNK};
 use super::neighbours::NeighbourList;
 
+// the compaction indexes its lanes with a mask of CHUNK - 1
+const _: () = assert!(CHUNK.is_power_of_two());
+
 /// The contacts of a block of at most [`CHUNK`] pairs as a structure of arrays; one per
 /// thread, reused from block to block.
 pub(super) struct Lanes {
     /// index of the contact's pair in the block
     k: [u32; CHUNK],
+    /// whether pair k of the block is in contact
+    now: [bool; CHUNK],
     /// branch vector x_j - x_i
     d: [[f64; CHUNK]; 3],
     /// R_i + R_j
@@ -57,6 +62,7 @@ impl Lanes {
         let z = [[0.0; CHUNK]; 3];
         Box::new(Self {
             k: [0; CHUNK],
+            now: [false; CHUNK],
             d: z,
             reach: [0.0; CHUNK],
             arm: z,
@@ -147,26 +153,31 @@ impl PairView<'_> {
     ) {
         let n = hist.len().min(CHUNK).min(f_out.len()).min(t_out.len()).min(was.len());
         let [x, y, z] = self.x;
+        let (pi, pj, shift) = (&self.i[o..o + n], &self.j[o..o + n], &self.shift[o..o + n]);
         let mut m = 0;
-        for k in 0..n {
-            let q = o + k;
-            let (a, b) = (self.i[q] as usize, self.j[q] as usize);
-            let s = self.shift[q];
+        for (k, (((&a, &b), s), now)) in pi.iter().zip(pj).zip(shift).zip(&mut l.now[..n]).enumerate() {
+            let (a, b) = (a as usize, b as usize);
             let d = [x[b] + s[0] - x[a], y[b] + s[1] - y[a], z[b] + s[2] - z[a]];
             let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             let reach = self.radius[a] + self.radius[b];
             let touch = r2 < reach * reach;
-            // written for every pair, kept (m advanced) for the pairs in contact only
-            l.k[m] = k as u32;
+            *now = touch;
+            // written for every pair, kept (m advanced) for the pairs in contact only;
+            // m <= k < CHUNK, so the mask only tells the compiler there is no bound to check
+            l.k[m & (CHUNK - 1)] = k as u32;
             m += touch as usize;
-            // a contact ends (about one in five per step at the peer's time step): the
-            // only branch of the pass
-            if was[k] && !touch {
-                hist[k] = [0.0; 3];
-                f_out[k] = [0.0; 3];
-                t_out[k] = [0.0; 3];
+        }
+        // the pairs that left contact (about one in five contacts per step at the peer's
+        // time step): one branch on both flags, in its own loop (folded into the loop
+        // above, the compiler branched on the overlap test, wrong for one pair in three)
+        let ends = hist[..n].iter_mut().zip(&mut f_out[..n]).zip(&mut t_out[..n]);
+        for ((w, &now), ((h, f), t)) in was[..n].iter_mut().zip(&l.now[..n]).zip(ends) {
+            if (*w as u8) > (now as u8) {
+                *h = [0.0; 3];
+                *f = [0.0; 3];
+                *t = [0.0; 3];
             }
-            was[k] = touch;
+            *w = now;
         }
         let [wx, wy, wz] = self.w;
         let [vx, vy, vz] = self.v;
