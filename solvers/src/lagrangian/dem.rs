@@ -97,7 +97,13 @@ impl PairView<'_> {
     /// The force of pair q into its slots (zero out of contact, the history cleared);
     /// the branch vector, the force and the power in contact.
     #[inline(always)]
-    fn write(&self, q: usize, h: &mut [f64; 3], f_out: &mut [f64; 3], t_out: &mut [f64; 3]) -> Option<TouchSums> {
+    pub(super) fn write(
+        &self,
+        q: usize,
+        h: &mut [f64; 3],
+        f_out: &mut [f64; 3],
+        t_out: &mut [f64; 3],
+    ) -> Option<TouchSums> {
         match self.force(q, h) {
             Some((d, n, f, power)) => {
                 *f_out = f;

@@ -284,3 +284,102 @@ fn linear_lanes(law: &LinearLaw, m: usize, l: &mut Lanes) {
         (t0[c], t1[c], t2[c]) = (t[0], t[1], t[2]);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use rand::Rng as _;
+
+    use super::*;
+    use crate::lagrangian::contact::ContactLaw;
+
+    #[test]
+    fn the_lanes_give_the_forces_of_the_contact_law_bit_for_bit() {
+        // pairs of 3 mm grains at 0.8-1.2 times their reach (about half in contact),
+        // approaching and receding, spinning, with histories from sticking to sliding
+        // (|k_t h| up to twice mu F_n), some that leave contact with a force in their
+        // slots: the three passes must give, pair by pair, the force, torque, history
+        // and power of the pair-by-pair law (`contact_force`), and clear the rest
+        let np = 3 * CHUNK + 17;
+        let mut rng = saltus_core::rng::stream(11, 0);
+        let mut u = |lo: f64, hi: f64| lo + (hi - lo) * rng.gen::<f64>();
+        let (mut x, mut y, mut z, mut radius) = (vec![], vec![], vec![], vec![]);
+        let mut vw: [Vec<f64>; 6] = Default::default();
+        for _ in 0..np {
+            let (ra, rb) = (u(2.7e-3, 3.3e-3), u(2.7e-3, 3.3e-3));
+            let (th, ph, dist) = (u(0.0, std::f64::consts::PI), u(0.0, 6.3), u(0.8, 1.2) * (ra + rb));
+            let c = [u(0.0, 0.1), u(0.0, 0.1), u(0.0, 0.1)];
+            let e = [th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()];
+            for (k, r) in [(0.0, ra), (dist, rb)] {
+                x.push(c[0] + k * e[0]);
+                y.push(c[1] + k * e[1]);
+                z.push(c[2] + k * e[2]);
+                radius.push(r);
+                for (m, v) in vw.iter_mut().enumerate() {
+                    v.push(if m < 3 { u(-0.5, 0.5) } else { u(-200.0, 200.0) });
+                }
+            }
+        }
+        let i: Vec<u32> = (0..np as u32).map(|q| 2 * q).collect();
+        let j: Vec<u32> = (0..np as u32).map(|q| 2 * q + 1).collect();
+        let shift = vec![[0.0; 3]; np];
+        let sqrt_m: Vec<f64> = (0..np).map(|_| u(0.01, 0.015)).collect();
+        let r_eff = vec![1.5e-3; np];
+        let law = ContactLaw::linear(3.2e4, 1.6e4, 0.7, 0.5);
+        let [vx, vy, vz, wx, wy, wz] = &vw;
+        let view = PairView {
+            x: [&x, &y, &z],
+            v: [vx, vy, vz],
+            w: [wx, wy, wz],
+            radius: &radius,
+            i: &i,
+            j: &j,
+            shift: &shift,
+            sqrt_m: &sqrt_m,
+            r_eff: &r_eff,
+            law: &law,
+            dt: 5e-5,
+        };
+        // a pair out of contact at the last step holds zeros; one in contact a history
+        // and a force
+        let was: Vec<bool> = (0..np).map(|_| u(0.0, 1.0) < 0.6).collect();
+        let hist: Vec<[f64; 3]> =
+            was.iter().map(|&w| if w { [0; 3].map(|_| u(-2e-3, 2e-3)) } else { [0.0; 3] }).collect();
+        let slot: Vec<[f64; 3]> = was.iter().map(|&w| if w { [1.0, -2.0, 3.0] } else { [0.0; 3] }).collect();
+
+        let (mut h_ref, mut f_ref, mut t_ref) = (hist.clone(), slot.clone(), slot.clone());
+        let mut touch_ref = Vec::new();
+        for q in 0..np {
+            if let Some((d, f, power)) = view.write(q, &mut h_ref[q], &mut f_ref[q], &mut t_ref[q]) {
+                touch_ref.push((q, d, f, power));
+            }
+        }
+        let (mut h, mut f, mut t, mut w) = (hist, slot.clone(), slot, was);
+        let mut touch = Vec::new();
+        view.linear_pairs(0, &mut h, &mut f, &mut t, &mut w, |c| touch.push(c));
+
+        let bits = |v: &[[f64; 3]]| v.iter().flatten().map(|a| a.to_bits()).collect::<Vec<_>>();
+        assert!(touch_ref.len() > np / 3 && touch_ref.len() < 2 * np / 3, "{} contacts", touch_ref.len());
+        // both regimes of the Coulomb slider are exercised: |F_t| at mu max(F_n, 0), and below
+        let sliding = touch_ref
+            .iter()
+            .filter(|(_, d, f, _)| {
+                let dist = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                let n = d.map(|c| c / dist);
+                let fn_ = -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]);
+                let ft = [0, 1, 2].map(|k| f[k] + fn_ * n[k]);
+                (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]).sqrt() >= law.friction * fn_.max(0.0) * (1.0 - 1e-9)
+            })
+            .count();
+        assert!(sliding > 10 && sliding + 10 < touch_ref.len(), "{sliding} of {} sliding", touch_ref.len());
+        assert_eq!(bits(&h), bits(&h_ref), "histories");
+        assert_eq!(bits(&f), bits(&f_ref), "forces");
+        assert_eq!(bits(&t), bits(&t_ref), "torques");
+        assert_eq!(touch.len(), touch_ref.len());
+        for (c, r) in touch.iter().zip(&touch_ref) {
+            assert_eq!(c.0, r.0);
+            assert_eq!(bits(&[c.1, c.2]), bits(&[r.1, r.2]), "pair {}", r.0);
+            assert_eq!(c.3.to_bits(), r.3.to_bits(), "power of pair {}", r.0);
+        }
+        assert_eq!(w, (0..np).map(|q| touch_ref.iter().any(|c| c.0 == q)).collect::<Vec<_>>());
+    }
+}
