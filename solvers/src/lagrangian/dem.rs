@@ -23,7 +23,7 @@ use rayon::prelude::*;
 use super::contact::{contact_force, cross, ContactInput, ContactLaw, ContactModel};
 use super::granular::{contact_values, spread, ContactSums, End, Slices, WallRecord, GROUP};
 use super::neighbours::NeighbourList;
-use super::pairs::{Contact, Touching};
+use super::pairs::{Contact, PairOut, Touching};
 use super::particles::{Box3, Particles};
 
 /// Particles per parallel work item: large enough to amortise scheduling, small enough
@@ -294,7 +294,7 @@ impl Dem {
                 |(c, ((hist, pf), pt, was))| {
                     let o = c * CHUNK;
                     if lanes {
-                        view.linear_pairs(o, hist, pf, pt, was, |_| {});
+                        view.linear_pairs(o, PairOut { hist, f: pf, t: pt, was }, |_| {});
                         return;
                     }
                     for (k, ((h, f_out), t_out)) in hist.iter_mut().zip(pf.iter_mut()).zip(pt.iter_mut()).enumerate() {
@@ -326,7 +326,7 @@ impl Dem {
                     spread(&slices, slab, ends.0, ends.1, &values);
                 };
                 if lanes {
-                    view.linear_pairs(o, hist, pf, pt, was, add);
+                    view.linear_pairs(o, PairOut { hist, f: pf, t: pt, was }, add);
                     return;
                 }
                 for (k, ((h, f_out), t_out)) in hist.iter_mut().zip(pf.iter_mut()).zip(pt.iter_mut()).enumerate() {

@@ -115,42 +115,35 @@ impl Touching {
     }
 }
 
+/// What the pair loop writes for a run of pairs: their histories, force slots (force on
+/// i), torque slots (n x f) and contact flags.
+pub(super) struct PairOut<'a> {
+    pub(super) hist: &'a mut [[f64; 3]],
+    pub(super) f: &'a mut [[f64; 3]],
+    pub(super) t: &'a mut [[f64; 3]],
+    pub(super) was: &'a mut [bool],
+}
+
 impl PairView<'_> {
-    /// The linear-law forces of the pairs `o..o + hist.len()` into their slots `f_out`
-    /// (force on i) and `t_out` (n x f), zero out of contact with the history cleared;
-    /// `was` flags the pairs in contact at the last step (updated; the others hold zeros
-    /// already), and `each` sees every pair in contact, in pair order. Bit for bit the
-    /// numbers of [`PairView::write`] pair by pair.
-    pub(super) fn linear_pairs(
-        &self,
-        o: usize,
-        hist: &mut [[f64; 3]],
-        f_out: &mut [[f64; 3]],
-        t_out: &mut [[f64; 3]],
-        was: &mut [bool],
-        mut each: impl FnMut(Contact),
-    ) {
+    /// The linear-law forces of the pairs `o..o + out.hist.len()` into their slots, zero
+    /// out of contact with the history cleared; `out.was` flags the pairs in contact at
+    /// the last step (updated; the others hold zeros already), and `each` sees every pair
+    /// in contact, in pair order. Bit for bit the numbers of [`PairView::write`] pair by
+    /// pair.
+    pub(super) fn linear_pairs(&self, o: usize, out: PairOut<'_>, mut each: impl FnMut(Contact)) {
+        let PairOut { hist, f, t, was } = out;
         LANES.with(|lanes| {
             let l = &mut lanes.borrow_mut();
-            let blocks = hist.chunks_mut(CHUNK).zip(f_out.chunks_mut(CHUNK)).zip(t_out.chunks_mut(CHUNK));
-            for (b, (((h, f), t), w)) in blocks.zip(was.chunks_mut(CHUNK)).enumerate() {
-                self.linear_block(o + b * CHUNK, h, f, t, w, l, &mut each);
+            let blocks = hist.chunks_mut(CHUNK).zip(f.chunks_mut(CHUNK)).zip(t.chunks_mut(CHUNK));
+            for (b, (((hist, f), t), was)) in blocks.zip(was.chunks_mut(CHUNK)).enumerate() {
+                self.linear_block(o + b * CHUNK, PairOut { hist, f, t, was }, l, &mut each);
             }
         });
     }
 
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn linear_block(
-        &self,
-        o: usize,
-        hist: &mut [[f64; 3]],
-        f_out: &mut [[f64; 3]],
-        t_out: &mut [[f64; 3]],
-        was: &mut [bool],
-        l: &mut Lanes,
-        each: &mut impl FnMut(Contact),
-    ) {
+    fn linear_block(&self, o: usize, out: PairOut<'_>, l: &mut Lanes, each: &mut impl FnMut(Contact)) {
+        let PairOut { hist, f: f_out, t: t_out, was } = out;
         let n = hist.len().min(CHUNK).min(f_out.len()).min(t_out.len()).min(was.len());
         let [x, y, z] = self.x;
         let (pi, pj, shift) = (&self.i[o..o + n], &self.j[o..o + n], &self.shift[o..o + n]);
@@ -198,8 +191,8 @@ impl PairView<'_> {
             l.dv[1][c] = vy[b] - vy[a];
             l.dv[2][c] = vz[b] - vz[a];
             l.sqrt_m[c] = self.sqrt_m[q];
-            for e in 0..3 {
-                l.h[e][c] = hist[k][e];
+            for (lane, &h) in l.h.iter_mut().zip(&hist[k]) {
+                lane[c] = h;
             }
         }
         let law = LinearLaw {
@@ -355,7 +348,7 @@ mod tests {
         }
         let (mut h, mut f, mut t, mut w) = (hist, slot.clone(), slot, was);
         let mut touch = Vec::new();
-        view.linear_pairs(0, &mut h, &mut f, &mut t, &mut w, |c| touch.push(c));
+        view.linear_pairs(0, PairOut { hist: &mut h, f: &mut f, t: &mut t, was: &mut w }, |c| touch.push(c));
 
         let bits = |v: &[[f64; 3]]| v.iter().flatten().map(|a| a.to_bits()).collect::<Vec<_>>();
         assert!(touch_ref.len() > np / 3 && touch_ref.len() < 2 * np / 3, "{} contacts", touch_ref.len());
