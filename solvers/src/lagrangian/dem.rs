@@ -20,10 +20,11 @@
 
 use rayon::prelude::*;
 
-use super::contact::{contact_force, cross, ContactInput, ContactLaw};
+use super::contact::{contact_force, cross, ContactInput, ContactLaw, ContactModel};
 use super::cylinders::{HalfCylinders, Sphere, Touches, MAX_TOUCHES};
 use super::granular::{contact_values, spread, ContactSums, End, Slices, WallRecord, GROUP};
 use super::neighbours::NeighbourList;
+use super::pairs::{Contact, PairOut, Touching};
 use super::particles::{Box3, Particles};
 
 /// Particles per parallel work item: large enough to amortise scheduling, small enough
@@ -57,18 +58,18 @@ pub const RECORD_SLOTS: usize = MAX_WALLS + MAX_TOUCHES;
 /// What the force of one listed pair reads, as slices: borrowed once per step, so that
 /// the pair loop, inlined, keeps their addresses in registers instead of reloading them
 /// through the particle and list structures for every pair.
-struct PairView<'a> {
-    x: [&'a [f64]; 3],
-    v: [&'a [f64]; 3],
-    w: [&'a [f64]; 3],
-    radius: &'a [f64],
-    i: &'a [u32],
-    j: &'a [u32],
-    shift: &'a [[f64; 3]],
-    sqrt_m: &'a [f64],
-    r_eff: &'a [f64],
-    law: &'a ContactLaw,
-    dt: f64,
+pub(super) struct PairView<'a> {
+    pub(super) x: [&'a [f64]; 3],
+    pub(super) v: [&'a [f64]; 3],
+    pub(super) w: [&'a [f64]; 3],
+    pub(super) radius: &'a [f64],
+    pub(super) i: &'a [u32],
+    pub(super) j: &'a [u32],
+    pub(super) shift: &'a [[f64; 3]],
+    pub(super) sqrt_m: &'a [f64],
+    pub(super) r_eff: &'a [f64],
+    pub(super) law: &'a ContactLaw,
+    pub(super) dt: f64,
 }
 
 impl PairView<'_> {
@@ -101,7 +102,13 @@ impl PairView<'_> {
     /// The force of pair q into its slots (zero out of contact, the history cleared);
     /// the branch vector, the force and the power in contact.
     #[inline(always)]
-    fn write(&self, q: usize, h: &mut [f64; 3], f_out: &mut [f64; 3], t_out: &mut [f64; 3]) -> Option<TouchSums> {
+    pub(super) fn write(
+        &self,
+        q: usize,
+        h: &mut [f64; 3],
+        f_out: &mut [f64; 3],
+        t_out: &mut [f64; 3],
+    ) -> Option<TouchSums> {
         match self.force(q, h) {
             Some((d, n, f, power)) => {
                 *f_out = f;
@@ -164,6 +171,8 @@ pub struct Dem {
     pair_f: Vec<[f64; 3]>,
     #[serde(skip)]
     pair_t: Vec<[f64; 3]>,
+    #[serde(skip)]
+    touching: Touching,
     /// the granular-field sums of the last sampled step ([`Dem::step_sampled`])
     #[serde(skip)]
     contact: ContactSums,
@@ -194,6 +203,7 @@ impl Dem {
             cyl_hist: vec![Touches::default(); nm],
             pair_f: Vec::new(),
             pair_t: Vec::new(),
+            touching: Touching::default(),
             contact: ContactSums::default(),
             rebuild_due: true,
         }
@@ -316,18 +326,25 @@ impl Dem {
         let (li, lj) = (&l.i, &l.j);
         let write =
             |q: usize, h: &mut [f64; 3], f_out: &mut [f64; 3], t_out: &mut [f64; 3]| view.write(q, h, f_out, t_out);
+        // the linear law in three passes, its force loop vectorised ([`super::pairs`])
+        let lanes = self.law.model == ContactModel::Linear;
+        let was = self.touching.prepare(l);
         if !sampled {
-            // each pair owns its history and its output slots: chunks of the three arrays
-            // zipped, pair q = chunk start + k
-            (l.hist.par_chunks_mut(CHUNK), self.pair_f.par_chunks_mut(CHUNK), self.pair_t.par_chunks_mut(CHUNK))
-                .into_par_iter()
-                .enumerate()
-                .for_each(|(c, (hist, pf, pt))| {
+            // each pair owns its history, its output slots and its flag: chunks of the
+            // four arrays zipped, pair q = chunk start + k
+            let pairs = (l.hist.par_chunks_mut(CHUNK), self.pair_f.par_chunks_mut(CHUNK));
+            (pairs, self.pair_t.par_chunks_mut(CHUNK), was.par_chunks_mut(CHUNK)).into_par_iter().enumerate().for_each(
+                |(c, ((hist, pf), pt, was))| {
                     let o = c * CHUNK;
+                    if lanes {
+                        view.linear_pairs(o, PairOut { hist, f: pf, t: pt, was }, |_| {});
+                        return;
+                    }
                     for (k, ((h, f_out), t_out)) in hist.iter_mut().zip(pf.iter_mut()).zip(pt.iter_mut()).enumerate() {
                         write(o + k, h, f_out, t_out);
                     }
-                });
+                },
+            );
             return;
         }
         // the same in groups of GROUP pairs, each adding its contacts to its own slab
@@ -337,20 +354,28 @@ impl Dem {
             l.hist.par_chunks_mut(GROUP),
             self.pair_f.par_chunks_mut(GROUP),
             self.pair_t.par_chunks_mut(GROUP),
+            was.par_chunks_mut(GROUP),
             cs.slabs.par_chunks_mut(slab_len.max(1)),
         )
             .into_par_iter()
             .enumerate()
-            .for_each(|(c, (hist, pf, pt, slab))| {
+            .for_each(|(c, (hist, pf, pt, was, slab))| {
                 let o = c * GROUP;
+                let mut add = |(q, d, f, power): Contact| {
+                    let (a, b) = (li[q] as usize, lj[q] as usize);
+                    let values =
+                        contact_values(d, f, [p.vx[a], p.vy[a], p.vz[a]], [p.vx[b], p.vy[b], p.vz[b]], power, 1.0);
+                    let ends = (End { z: p.z[a], r: p.radius[a] }, End { z: p.z[a] + d[2], r: p.radius[b] });
+                    spread(&slices, slab, ends.0, ends.1, &values);
+                };
+                if lanes {
+                    view.linear_pairs(o, PairOut { hist, f: pf, t: pt, was }, add);
+                    return;
+                }
                 for (k, ((h, f_out), t_out)) in hist.iter_mut().zip(pf.iter_mut()).zip(pt.iter_mut()).enumerate() {
                     let q = o + k;
                     if let Some((d, f, power)) = write(q, h, f_out, t_out) {
-                        let (a, b) = (li[q] as usize, lj[q] as usize);
-                        let values =
-                            contact_values(d, f, [p.vx[a], p.vy[a], p.vz[a]], [p.vx[b], p.vy[b], p.vz[b]], power, 1.0);
-                        let ends = (End { z: p.z[a], r: p.radius[a] }, End { z: p.z[a] + d[2], r: p.radius[b] });
-                        spread(&slices, slab, ends.0, ends.1, &values);
+                        add((q, d, f, power));
                     }
                 }
             });
@@ -537,46 +562,4 @@ impl Dem {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::lagrangian::neighbours::{pairs_within, MAX_SKIN_DIAMETERS};
-
-    #[test]
-    fn with_the_adapted_skin_every_contact_gets_its_force() {
-        // a dense, fast granular gas (4 m/s against 6 mm grains, 0.22 contact times per
-        // step): the skin widens from 0.01 d; after every step, unless the list is due
-        // for a rebuild, every pair in contact (brute force over all pairs and images)
-        // is listed, so the next step computes its force
-        let (l, r) = (0.06, 3e-3);
-        let bx = Box3 { length: [l, l, l], periodic: [true; 3] };
-        let mut p = Particles::default();
-        let mut rng = saltus_core::rng::stream(7, 0);
-        use rand::Rng as _;
-        let per_side = 7;
-        for k in 0..per_side * per_side * per_side {
-            let (ix, iy, iz) = (k % per_side, (k / per_side) % per_side, k / (per_side * per_side));
-            let c = |i: usize| (i as f64 + 0.5) * l / per_side as f64;
-            let v = [0; 3].map(|_| 4.0 * (2.0 * rng.gen::<f64>() - 1.0));
-            p.push([c(ix), c(iy), c(iz)], v, [0.0; 3], r, 2500.0, false);
-        }
-        let law = ContactLaw::linear(3e4, 1.5e4, 0.9, 0.5);
-        let m = 2500.0 * std::f64::consts::PI * (2.0 * r).powi(3) / 6.0;
-        let dt = 0.22 * law.contact_time(m, r, 2500.0, 0.0, 0.0);
-        let mut dem = Dem::new(p, bx, law, Vec::new(), [0.0; 3], dt, 0.01 * 2.0 * r);
-        let mut widest: f64 = 0.0;
-        for step in 0..400 {
-            dem.step();
-            widest = widest.max(dem.list.skin);
-            if dem.rebuild_due {
-                continue;
-            }
-            let (p, list) = (&dem.p, &dem.list);
-            for (a, b) in pairs_within(p, &bx, 0.0) {
-                let listed = (list.start[a]..list.start[a + 1]).any(|q| list.j[q] as usize == b);
-                assert!(listed, "step {step}: pair ({a}, {b}) in contact is not listed");
-            }
-        }
-        assert!(dem.list.builds > 10, "{} builds", dem.list.builds);
-        assert!(widest > 5.0 * dem.list.skin_min && widest <= MAX_SKIN_DIAMETERS * 2.0 * r, "skin {widest}");
-    }
-}
+mod tests;

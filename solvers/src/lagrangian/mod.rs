@@ -12,6 +12,7 @@ mod deposition;
 pub mod drag;
 pub mod granular;
 pub mod neighbours;
+mod pairs;
 pub mod particles;
 pub mod report;
 mod sampling;
