@@ -151,8 +151,18 @@ fn check_restart(scene: &Scene, r: &run::checkpoint::Restart) -> Result<(), Erro
         )));
     }
     let now = scene.to_toml()?;
-    let keys = run::checkpoint::scene_differences(&r.scene, &now, solver)
-        .map_err(|e| Error::Invalid(format!("{file}: {e}")))?;
+    // the checkpoint's scene resolved again, so that a key added since it was written
+    // (absent there) takes its default, which is the behaviour the checkpoint ran with;
+    // a scene this version cannot read is compared as written
+    let saved = r
+        .scene
+        .parse::<toml::Table>()
+        .ok()
+        .and_then(|t| Scene::from_table(t, &scene.path).ok())
+        .and_then(|s| s.to_toml().ok())
+        .unwrap_or_else(|| r.scene.clone());
+    let keys =
+        run::checkpoint::scene_differences(&saved, &now, solver).map_err(|e| Error::Invalid(format!("{file}: {e}")))?;
     if keys.is_empty() {
         return Ok(());
     }
@@ -161,4 +171,37 @@ fn check_restart(scene: &Scene, r: &run::checkpoint::Restart) -> Result<(), Erro
         keys.join(", "),
         scene.path.display()
     )))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A checkpoint written before a key existed (absent from its scene) restarts when the
+    /// key is at its default, the behaviour it ran with; a changed value is still refused.
+    #[test]
+    fn a_key_added_since_the_checkpoint_takes_its_default() {
+        saltus_closures::link();
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/verification/dem_binary_collision.toml");
+        let scene = Scene::from_file(&path).unwrap();
+        let mut saved: toml::Table = scene.to_toml().unwrap().parse().unwrap();
+        let contact = saved["particles"]["contact"].as_table().unwrap().clone();
+        assert!(contact.contains_key("normal_force"));
+        let mut old = contact.clone();
+        old.remove("normal_force");
+        saved["particles"].as_table_mut().unwrap().insert("contact".into(), toml::Value::Table(old));
+        let restart = run::checkpoint::Restart {
+            dir: path.clone(),
+            file: path.clone(),
+            solver: "lagrangian".into(),
+            scene: saved.to_string(),
+            cadence: Default::default(),
+            state: Vec::new(),
+        };
+        check_restart(&scene, &restart).unwrap();
+        let repulsive = Scene::from_file_with(&path, &["particles.contact.normal_force=\"repulsive\"".into()]).unwrap();
+        let e = check_restart(&repulsive, &restart).unwrap_err().to_string();
+        assert!(e.contains("particles.contact.normal_force"), "{e}");
+    }
 }

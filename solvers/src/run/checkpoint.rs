@@ -34,8 +34,9 @@ pub const FILE: &str = "checkpoint.bin";
 /// First bytes of a checkpoint.
 const MAGIC: &[u8; 8] = b"SALTUSCP";
 /// Layout version of the file and of every saved state (2: the DEM's statistics carry
-/// the blocking of qs and the temperature history).
-pub const VERSION: u32 = 2;
+/// the blocking of qs and the temperature history; 3: the DEM carries the half-cylinder
+/// bottom, its histories and the walls' own law, and the contact law its normal force).
+pub const VERSION: u32 = 3;
 
 /// What a checkpoint holds besides its framing.
 #[derive(Serialize, Deserialize)]
