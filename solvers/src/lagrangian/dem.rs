@@ -138,9 +138,9 @@ pub struct Dem {
     bx: Box3,
     /// contact law
     law: ContactLaw,
-    /// contact law against the flat walls (the particle law with the wall friction)
+    /// friction of the particles on the flat walls when it is not the particle law's
     #[serde(default)]
-    wall_law: Option<ContactLaw>,
+    wall_friction: Option<f64>,
     /// flat walls
     walls: Vec<Wall>,
     /// body acceleration of mobile particles: gravity and buoyancy (m/s^2)
@@ -189,7 +189,7 @@ impl Dem {
             p,
             bx,
             law,
-            wall_law: None,
+            wall_friction: None,
             walls,
             body,
             dt,
@@ -219,7 +219,7 @@ impl Dem {
     /// The same engine with a friction coefficient of the particles on the flat walls
     /// other than the particle law's (None: the particle law's).
     pub fn with_wall_friction(mut self, mu: Option<f64>) -> Self {
-        self.wall_law = mu.map(|m| ContactLaw { friction: m, ..self.law });
+        self.wall_friction = mu;
         self
     }
 
@@ -388,7 +388,8 @@ impl Dem {
         let dt = self.dt;
         let body = self.body;
         let law = &self.law;
-        let wall_law = self.wall_law.as_ref().unwrap_or(law);
+        // the particle law with the walls' friction, derived once per step
+        let wall_law = &self.wall_friction.map_or(*law, |friction| ContactLaw { friction, ..*law });
         let walls = &self.walls;
         let cylinders = self.cylinders.as_ref();
         let l = &self.list;
