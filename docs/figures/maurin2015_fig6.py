@@ -1,0 +1,148 @@
+"""Maurin et al. 2015 figure 6 from saltus runs: table, 3/2-power fits, figure.
+
+    python3 docs/figures/maurin2015_fig6.py RUNS_DIR [--out docs/figures/maurin2015_fig6.png]
+        [--mpm ../shared/data/mpm1948_recking2010/Meyer-Peter_Muller_1948_data.csv]
+
+RUNS_DIR holds one `saltus run` output folder per point, named `<series>_<nominal theta>`
+(e.g. `drw_0.1`, `nodrw_0.1`; docs/benchmarks.md "Figure 6 with 100 s of averaging" gives
+the commands). For each point: qs* as the mean of block means of the `qs_star` column of
+`timeseries.csv` over the averaging window [t0, t1) (blocks of `--block` s, their standard
+error), and theta* the summary's `shields_turbulent` (the paper's Shields number from the
+largest Reynolds shear stress, section IV).
+
+The fit is the paper's form (figure 6 caption, Wilson 1987): qs* = a (theta* - theta_c)^{3/2}
+by least squares over the points with qs* > `--qmin`: for each theta_c on a fine grid below
+the smallest fitted theta*, a is the linear least-squares slope, and the pair with the
+smallest residual is kept. The same fit with a fixed at Wilson's 11.8 is printed too.
+Needs numpy and matplotlib (the figure only).
+"""
+
+import argparse
+import csv
+import json
+import math
+import os
+
+import numpy as np
+
+
+def block_mean(folder, t0, t1, block):
+    rows = list(csv.DictReader(open(os.path.join(folder, "timeseries.csv"))))
+    t = np.array([float(r["t"]) for r in rows])
+    q = np.array([float(r["qs_star"]) for r in rows])
+    means = []
+    s = t0
+    while s + block <= t1 + 1e-9:
+        m = (t >= s) & (t < s + block)
+        if m.any():
+            means.append(q[m].mean())
+        s += block
+    means = np.array(means)
+    err = means.std(ddof=1) / math.sqrt(len(means)) if len(means) > 1 else float("nan")
+    return means.mean(), err, len(means)
+
+
+def fit(theta, qs, qmin):
+    keep = qs > qmin
+    th, q = theta[keep], qs[keep]
+    if len(th) < 3:
+        return None
+    grid = np.linspace(0.0, th.min() - 1e-9, 40001)
+    best = None
+    for tc in grid:
+        x = (th - tc) ** 1.5
+        a = (x @ q) / (x @ x)
+        r = float(((q - a * x) ** 2).sum())
+        if best is None or r < best[2]:
+            best = (a, tc, r)
+    wil = min(grid, key=lambda tc: float(((q - 11.8 * (th - tc) ** 1.5) ** 2).sum()))
+    rw = float(((q - 11.8 * (th - wil) ** 1.5) ** 2).sum())
+    n = len(th)
+    return {"a": best[0], "theta_c": best[1], "rms": math.sqrt(best[2] / n), "n": n,
+            "theta_c_wilson": wil, "rms_wilson": math.sqrt(rw / n)}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("runs")
+    ap.add_argument("--t0", type=float, default=10.0)
+    ap.add_argument("--t1", type=float, default=110.0)
+    ap.add_argument("--block", type=float, default=10.0)
+    ap.add_argument("--qmin", type=float, default=1e-3)
+    ap.add_argument("--out")
+    ap.add_argument("--mpm")
+    args = ap.parse_args()
+
+    series = {}
+    for name in sorted(os.listdir(args.runs)):
+        folder = os.path.join(args.runs, name)
+        if not os.path.isfile(os.path.join(folder, "summary.json")) or "_" not in name:
+            continue
+        tag, nominal = name.rsplit("_", 1)
+        s = json.load(open(os.path.join(folder, "summary.json")))
+        m, e, nb = block_mean(folder, args.t0, args.t1, args.block)
+        series.setdefault(tag, []).append((float(nominal), s["shields_turbulent"], m, e, nb, s["shields"]))
+
+    fits = {}
+    for tag, pts in sorted(series.items()):
+        pts.sort()
+        print(f"\n{tag}: nominal theta | theta* | qs* +- stderr ({args.block:g}-s blocks, "
+              f"{args.t0:g}-{args.t1:g} s) | theta (largest fluid stress)")
+        for p in pts:
+            print(f"| {p[0]:g} | {p[1]:.4f} | {p[2]:.4g} +- {p[3]:.2g} | {p[5]:.4f} |")
+        f = fit(np.array([p[1] for p in pts]), np.array([p[2] for p in pts]), args.qmin)
+        fits[tag] = f
+        if f:
+            print(f"fit over {f['n']} points with qs* > {args.qmin:g}: a = {f['a']:.2f}, "
+                  f"theta_c = {f['theta_c']:.4f} (rms {f['rms']:.3g}); a = 11.8 fixed: "
+                  f"theta_c = {f['theta_c_wilson']:.4f} (rms {f['rms_wilson']:.3g})")
+
+    if not args.out:
+        return
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (ax, lin) = plt.subplots(1, 2, figsize=(10, 4.2))
+    styles = {"drw": ("s", "k", "k", "with the DRW"), "nodrw": ("s", "none", "k", "without the DRW")}
+    for tag, pts in sorted(series.items()):
+        mk, fc, ec, label = styles.get(tag, ("o", "none", "C0", tag))
+        th = np.array([p[1] for p in pts])
+        q = np.array([p[2] for p in pts])
+        e = np.array([p[3] for p in pts])
+        for a_ in (ax, lin):
+            a_.errorbar(th, q, yerr=e, fmt=mk, mfc=fc, mec=ec, ecolor=ec, label=f"saltus, {label}")
+        f = fits.get(tag)
+        if f:
+            x = np.linspace(f["theta_c"], th.max() * 1.05, 200)
+            ls = "-" if tag == "drw" else "--"
+            lab = f"fit {f['a']:.1f} (theta* - {f['theta_c']:.3f})^1.5"
+            for a_ in (ax, lin):
+                a_.plot(x, f["a"] * (x - f["theta_c"]) ** 1.5, ls, color="0.3", lw=1, label=lab)
+    x = np.linspace(0.04, 0.5, 200)
+    ax.plot(x, 11.8 * (x - 0.04) ** 1.5, color="0.7", lw=2, label="Wilson 11.8 (theta - 0.04)^1.5")
+    if args.mpm and os.path.isfile(args.mpm):
+        rows = list(csv.DictReader(open(args.mpm)))
+        th = [float(r["Shields stress"]) for r in rows]
+        q = [float(r["dimensionless bedload flux per unit width"]) for r in rows]
+        ax.plot(th, q, "+", color="C3", label="Meyer-Peter & Muller 1948 (Recking 2010)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlim(0.02, 0.6)
+    ax.set_ylim(1e-4, 10)
+    ax.set_xlabel("theta* (largest Reynolds shear stress)")
+    ax.set_ylabel("qs*")
+    ax.legend(fontsize=7, loc="lower right")
+    ax.set_title("Maurin et al. 2015 fig. 6 set-up, 100 s averages")
+    lin.set_xlim(0.0, 0.16)
+    lin.set_ylim(-0.01, 0.25)
+    lin.set_xlabel("theta*")
+    lin.set_ylabel("qs*")
+    lin.set_title("near the threshold (linear)")
+    fig.tight_layout()
+    fig.savefig(args.out, dpi=110)
+    print(f"\nwrote {args.out}")
+
+
+if __name__ == "__main__":
+    main()
