@@ -26,6 +26,7 @@ use multiversion::multiversion;
 use super::contact::cross;
 use super::dem::{PairView, CHUNK};
 use super::neighbours::NeighbourList;
+use super::particles::{Particles, Place};
 
 // the compaction indexes its lanes with a mask of CHUNK - 1
 const _: () = assert!(CHUNK.is_power_of_two());
@@ -35,6 +36,9 @@ const _: () = assert!(CHUNK.is_power_of_two());
 pub(super) struct Lanes {
     /// index of the contact's pair in the block
     k: [u32; CHUNK],
+    /// its particles i and j
+    a: [u32; CHUNK],
+    b: [u32; CHUNK],
     /// whether pair k of the block is in contact
     now: [bool; CHUNK],
     /// branch vector x_j - x_i
@@ -62,6 +66,8 @@ impl Lanes {
         let z = [[0.0; CHUNK]; 3];
         Box::new(Self {
             k: [0; CHUNK],
+            a: [0; CHUNK],
+            b: [0; CHUNK],
             now: [false; CHUNK],
             d: z,
             reach: [0.0; CHUNK],
@@ -73,6 +79,30 @@ impl Lanes {
             t: z,
             power: [0.0; CHUNK],
         })
+    }
+}
+
+/// A particle's velocity and angular velocity (two numbers of padding), one aligned cache
+/// line: what pass 2 reads of the two grains of a contact.
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C, align(64))]
+pub(super) struct Motion(pub(super) [f64; 8]);
+
+/// The particle state the pair loop reads, copied once per step from [`Particles`] into
+/// one record per particle (the same numbers, so the same bits).
+#[derive(Clone, Debug, Default)]
+pub(super) struct Packed {
+    pub(super) place: Vec<Place>,
+    pub(super) motion: Vec<Motion>,
+}
+
+impl Packed {
+    /// The records of `p` (reused buffers).
+    pub(super) fn fill(&mut self, p: &Particles) {
+        p.places(&mut self.place);
+        self.motion.clear();
+        self.motion
+            .extend((0..p.len()).map(|a| Motion([p.vx[a], p.vy[a], p.vz[a], p.wx[a], p.wy[a], p.wz[a], 0.0, 0.0])));
     }
 }
 
@@ -145,19 +175,25 @@ impl PairView<'_> {
     fn linear_block(&self, o: usize, out: PairOut<'_>, l: &mut Lanes, each: &mut impl FnMut(Contact)) {
         let PairOut { hist, f: f_out, t: t_out, was } = out;
         let n = hist.len().min(CHUNK).min(f_out.len()).min(t_out.len()).min(was.len());
-        let [x, y, z] = self.x;
+        let (place, motion) = (self.place, self.motion);
         let (pi, pj, shift) = (&self.i[o..o + n], &self.j[o..o + n], &self.shift[o..o + n]);
         let mut m = 0;
         for (k, (((&a, &b), s), now)) in pi.iter().zip(pj).zip(shift).zip(&mut l.now[..n]).enumerate() {
-            let (a, b) = (a as usize, b as usize);
-            let d = [x[b] + s[0] - x[a], y[b] + s[1] - y[a], z[b] + s[2] - z[a]];
+            let (pa, pb) = (&place[a as usize].0, &place[b as usize].0);
+            let d = [pb[0] + s[0] - pa[0], pb[1] + s[1] - pa[1], pb[2] + s[2] - pa[2]];
             let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-            let reach = self.radius[a] + self.radius[b];
+            let reach = pa[3] + pb[3];
             let touch = r2 < reach * reach;
             *now = touch;
             // written for every pair, kept (m advanced) for the pairs in contact only;
-            // m <= k < CHUNK, so the mask only tells the compiler there is no bound to check
-            l.k[m & (CHUNK - 1)] = k as u32;
+            // m <= k < CHUNK, so the mask only tells the compiler there is no bound to
+            // check. The branch vector and the particles are kept for pass 2, so that it
+            // reads only what a contact needs beyond the test.
+            let c = m & (CHUNK - 1);
+            l.k[c] = k as u32;
+            (l.a[c], l.b[c]) = (a, b);
+            (l.d[0][c], l.d[1][c], l.d[2][c]) = (d[0], d[1], d[2]);
+            l.reach[c] = reach;
             m += touch as usize;
         }
         // the pairs that left contact (about one in five contacts per step at the peer's
@@ -172,25 +208,17 @@ impl PairView<'_> {
             }
             *w = now;
         }
-        let [wx, wy, wz] = self.w;
-        let [vx, vy, vz] = self.v;
-        for c in 0..m {
+        for c in 0..m.min(CHUNK) {
             let k = l.k[c] as usize;
-            let q = o + k;
-            let (a, b) = (self.i[q] as usize, self.j[q] as usize);
-            let s = self.shift[q];
-            l.d[0][c] = x[b] + s[0] - x[a];
-            l.d[1][c] = y[b] + s[1] - y[a];
-            l.d[2][c] = z[b] + s[2] - z[a];
-            let (ra, rb) = (self.radius[a], self.radius[b]);
-            l.reach[c] = ra + rb;
-            l.arm[0][c] = ra * wx[a] + rb * wx[b];
-            l.arm[1][c] = ra * wy[a] + rb * wy[b];
-            l.arm[2][c] = ra * wz[a] + rb * wz[b];
-            l.dv[0][c] = vx[b] - vx[a];
-            l.dv[1][c] = vy[b] - vy[a];
-            l.dv[2][c] = vz[b] - vz[a];
-            l.sqrt_m[c] = self.sqrt_m[q];
+            let (ma, mb) = (&motion[l.a[c] as usize].0, &motion[l.b[c] as usize].0);
+            let (ra, rb) = (place[l.a[c] as usize].0[3], place[l.b[c] as usize].0[3]);
+            l.arm[0][c] = ra * ma[3] + rb * mb[3];
+            l.arm[1][c] = ra * ma[4] + rb * mb[4];
+            l.arm[2][c] = ra * ma[5] + rb * mb[5];
+            l.dv[0][c] = mb[0] - ma[0];
+            l.dv[1][c] = mb[1] - ma[1];
+            l.dv[2][c] = mb[2] - ma[2];
+            l.sqrt_m[c] = self.sqrt_m[o + k];
             for (lane, &h) in l.h.iter_mut().zip(&hist[k]) {
                 lane[c] = h;
             }
@@ -325,6 +353,22 @@ mod tests {
         // the repulsive law soft enough that a good part of the contacts pull (the
         // dashpot's c_n v_n above k_n delta) and are clipped
         let repulsive = ContactLaw::linear(10.0, 5.0, 0.7, 0.5).with_normal_force(NormalForce::Repulsive);
+        let [vx, vy, vz, wx, wy, wz] = vw.clone();
+        let p = Particles {
+            x: x.clone(),
+            y: y.clone(),
+            z: z.clone(),
+            vx,
+            vy,
+            vz,
+            wx,
+            wy,
+            wz,
+            radius: radius.clone(),
+            ..Default::default()
+        };
+        let mut packed = Packed::default();
+        packed.fill(&p);
         for law in [ContactLaw::linear(3.2e4, 1.6e4, 0.7, 0.5), repulsive] {
             let [vx, vy, vz, wx, wy, wz] = &vw;
             let view = PairView {
@@ -339,6 +383,8 @@ mod tests {
                 r_eff: &r_eff,
                 law: &law,
                 dt: 5e-5,
+                place: &packed.place,
+                motion: &packed.motion,
             };
             // a pair out of contact at the last step holds zeros; one in contact a history
             // and a force

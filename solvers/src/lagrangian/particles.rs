@@ -23,6 +23,13 @@ impl Box3 {
     }
 }
 
+/// A particle's position and radius side by side, one aligned half cache line: the
+/// overlap tests of the pair loop and of the neighbour build read two of them at random,
+/// instead of four numbers from four arrays (four cache lines per particle).
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C, align(32))]
+pub struct Place(pub [f64; 4]);
+
 /// Spheres as a structure of arrays. Indices `0..n_mobile` are mobile particles,
 /// `n_mobile..len()` fixed ones (the rough bottom): fixed particles have zero inverse
 /// mass and inertia and are never integrated.
@@ -65,6 +72,13 @@ impl Particles {
     /// Whether there is no particle.
     pub fn is_empty(&self) -> bool {
         self.x.is_empty()
+    }
+
+    /// The positions and radii of every particle as records (the same numbers), into
+    /// `out` (reused).
+    pub fn places(&self, out: &mut Vec<Place>) {
+        out.clear();
+        out.extend((0..self.len()).map(|a| Place([self.x[a], self.y[a], self.z[a], self.radius[a]])));
     }
 
     /// Add one sphere of radius `r` and density `rho` at `pos` with velocity `v` and
