@@ -22,6 +22,7 @@
 use std::cell::RefCell;
 
 use multiversion::multiversion;
+use rayon::prelude::*;
 
 use super::contact::cross;
 use super::dem::{PairView, CHUNK};
@@ -97,12 +98,22 @@ pub(super) struct Packed {
 }
 
 impl Packed {
-    /// The records of `p` (reused buffers).
+    /// The records of `p` (reused buffers), over the fixed chunks in parallel: serial, the
+    /// copy was 1.6 % of a step on two threads.
     pub(super) fn fill(&mut self, p: &Particles) {
-        p.places(&mut self.place);
-        self.motion.clear();
-        self.motion
-            .extend((0..p.len()).map(|a| Motion([p.vx[a], p.vy[a], p.vz[a], p.wx[a], p.wy[a], p.wz[a], 0.0, 0.0])));
+        let n = p.len();
+        self.place.resize(n, Place::default());
+        self.motion.resize(n, Motion::default());
+        let out = self.place.par_chunks_mut(CHUNK).zip(self.motion.par_chunks_mut(CHUNK));
+        out.enumerate().for_each(|(c, (place, motion))| {
+            p.places_from(c * CHUNK, place);
+            let r = c * CHUNK..c * CHUNK + motion.len();
+            let v = p.vx[r.clone()].iter().zip(&p.vy[r.clone()]).zip(&p.vz[r.clone()]);
+            let w = p.wx[r.clone()].iter().zip(&p.wy[r.clone()]).zip(&p.wz[r]);
+            for (o, (((&vx, &vy), &vz), ((&wx, &wy), &wz))) in motion.iter_mut().zip(v.zip(w)) {
+                *o = Motion([vx, vy, vz, wx, wy, wz, 0.0, 0.0]);
+            }
+        });
     }
 }
 
