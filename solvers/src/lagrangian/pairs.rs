@@ -2,10 +2,11 @@
 //! itself runs as one vector loop (issue 13 item 4, fourth pass):
 //!
 //! 1. over the listed pairs of a block, without a branch: the branch vector and the
-//!    overlap test, the pairs in contact compacted into a list, the histories and the
-//!    force slots of the others cleared;
-//! 2. the inputs of the pairs in contact gathered into structure-of-arrays lanes
-//!    ([`Lanes`]);
+//!    overlap test, the pairs in contact compacted into a list with their particles,
+//!    branch vectors and reaches, the histories and the force slots of the others
+//!    cleared;
+//! 2. the rest of the inputs of the pairs in contact (velocities, spins, histories)
+//!    gathered into structure-of-arrays lanes ([`Lanes`]);
 //! 3. the force of every contact in one loop without a branch ([`linear_lanes`]), then
 //!    the results scattered to the pairs' slots.
 //!
@@ -18,6 +19,10 @@
 //! `multiversion`); it uses no fused multiply-add and no reassociation, and square root
 //! and division are correctly rounded in both, so both versions give the same bits and a
 //! run does not depend on the processor that runs it.
+//!
+//! Passes 1 and 2 read the particles at random, by the pairs' indices: from records
+//! packed once per step ([`Packed`]: position and radius in half a cache line, velocity
+//! and spin in one), not from the ten arrays of [`Particles`] (fifth pass).
 
 use std::cell::RefCell;
 
