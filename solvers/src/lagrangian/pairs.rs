@@ -2,11 +2,10 @@
 //! itself runs as one vector loop (issue 13 item 4, fourth pass):
 //!
 //! 1. over the listed pairs of a block, without a branch: the branch vector and the
-//!    overlap test, the pairs in contact compacted into a list with their particles,
-//!    branch vectors and reaches, the histories and the force slots of the others
-//!    cleared;
-//! 2. the rest of the inputs of the pairs in contact (velocities, spins, histories)
-//!    gathered into structure-of-arrays lanes ([`Lanes`]);
+//!    overlap test, the pairs in contact compacted into a list, the histories and the
+//!    force slots of the others cleared;
+//! 2. the inputs of the pairs in contact gathered into structure-of-arrays lanes
+//!    ([`Lanes`]);
 //! 3. the force of every contact in one loop without a branch ([`linear_lanes`]), then
 //!    the results scattered to the pairs' slots.
 //!
@@ -42,9 +41,6 @@ const _: () = assert!(CHUNK.is_power_of_two());
 pub(super) struct Lanes {
     /// index of the contact's pair in the block
     k: [u32; CHUNK],
-    /// its particles i and j
-    a: [u32; CHUNK],
-    b: [u32; CHUNK],
     /// whether pair k of the block is in contact
     now: [bool; CHUNK],
     /// branch vector x_j - x_i
@@ -72,8 +68,6 @@ impl Lanes {
         let z = [[0.0; CHUNK]; 3];
         Box::new(Self {
             k: [0; CHUNK],
-            a: [0; CHUNK],
-            b: [0; CHUNK],
             now: [false; CHUNK],
             d: z,
             reach: [0.0; CHUNK],
@@ -203,13 +197,9 @@ impl PairView<'_> {
             *now = touch;
             // written for every pair, kept (m advanced) for the pairs in contact only;
             // m <= k < CHUNK, so the mask only tells the compiler there is no bound to
-            // check. The branch vector and the particles are kept for pass 2, so that it
-            // reads only what a contact needs beyond the test.
-            let c = m & (CHUNK - 1);
-            l.k[c] = k as u32;
-            (l.a[c], l.b[c]) = (a, b);
-            (l.d[0][c], l.d[1][c], l.d[2][c]) = (d[0], d[1], d[2]);
-            l.reach[c] = reach;
+            // check. Only the index: keeping the branch vector and the particles too (8
+            // stores per pair instead of 2) moved the time of pass 2 into this loop.
+            l.k[m & (CHUNK - 1)] = k as u32;
             m += touch as usize;
         }
         // the pairs that left contact (about one in five contacts per step at the peer's
@@ -226,15 +216,23 @@ impl PairView<'_> {
         }
         for c in 0..m.min(CHUNK) {
             let k = l.k[c] as usize;
-            let (ma, mb) = (&motion[l.a[c] as usize].0, &motion[l.b[c] as usize].0);
-            let (ra, rb) = (place[l.a[c] as usize].0[3], place[l.b[c] as usize].0[3]);
+            let q = o + k;
+            let (a, b) = (self.i[q] as usize, self.j[q] as usize);
+            let s = self.shift[q];
+            let (pa, pb) = (&place[a].0, &place[b].0);
+            l.d[0][c] = pb[0] + s[0] - pa[0];
+            l.d[1][c] = pb[1] + s[1] - pa[1];
+            l.d[2][c] = pb[2] + s[2] - pa[2];
+            let (ra, rb) = (pa[3], pb[3]);
+            l.reach[c] = ra + rb;
+            let (ma, mb) = (&motion[a].0, &motion[b].0);
             l.arm[0][c] = ra * ma[3] + rb * mb[3];
             l.arm[1][c] = ra * ma[4] + rb * mb[4];
             l.arm[2][c] = ra * ma[5] + rb * mb[5];
             l.dv[0][c] = mb[0] - ma[0];
             l.dv[1][c] = mb[1] - ma[1];
             l.dv[2][c] = mb[2] - ma[2];
-            l.sqrt_m[c] = self.sqrt_m[o + k];
+            l.sqrt_m[c] = self.sqrt_m[q];
             for (lane, &h) in l.h.iter_mut().zip(&hist[k]) {
                 lane[c] = h;
             }
