@@ -371,15 +371,15 @@ impl FluidForces {
                     re[i] = speed * d / nu_f;
                     re_star[i] = (field.re_ratio[cell] * re[i]).max(1e-12);
                     phi_p[i] = field.phi[cell];
+                    // the hindrance held per cell, read here with the cell at hand
+                    if let Some(&h) = field.hindrance.get(cell) {
+                        hind[i] = h;
+                    }
                     ur[i] = u;
                 }
                 models.drag.cd_batch(re_star, cd);
                 if field.hindrance.is_empty() {
                     models.hindrance.factor_batch(phi_p, re, hind);
-                } else {
-                    for (i, h) in hind.iter_mut().enumerate() {
-                        *h = field.hindrance[field.cell(p.z[o + i])];
-                    }
                 }
                 for i in 0..n {
                     let d = 2.0 * p.radius[o + i];

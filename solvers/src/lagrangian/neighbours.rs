@@ -37,7 +37,7 @@
 use rayon::prelude::*;
 
 use super::dem::CHUNK;
-use super::particles::{Box3, Particles};
+use super::particles::{Box3, Particles, Place};
 
 /// Pair list with history.
 #[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
@@ -85,6 +85,9 @@ pub struct NeighbourList {
     cell_of: Vec<u32>,
     #[serde(skip)]
     fill: Vec<usize>,
+    /// the wrapped positions and radii, as records for the candidate loop
+    #[serde(skip)]
+    place: Vec<Place>,
     /// the rows of each chunk of particles, before they are put end to end
     #[serde(skip)]
     parts: Vec<Rows>,
@@ -183,10 +186,7 @@ impl Axis {
 
 /// What the rows of a build read: the particles, the cell list and the previous list.
 struct Grid<'a> {
-    x: &'a [f64],
-    y: &'a [f64],
-    z: &'a [f64],
-    radius: &'a [f64],
+    place: &'a [Place],
     inv_mass: &'a [f64],
     cell_items: &'a [u32],
     cell_start: &'a [usize],
@@ -205,11 +205,11 @@ impl Grid<'_> {
     /// first: read through the structure, their addresses would be reloaded after every
     /// push into `out`.
     fn rows(&self, range: std::ops::Range<usize>, out: &mut Rows) {
-        let Grid { x, y, z, radius, inv_mass, cell_items, cell_start, old_i_start, old_j, old_hist, .. } = *self;
+        let Grid { place, inv_mass, cell_items, cell_start, old_i_start, old_j, old_hist, .. } = *self;
         let (skin, half, period, axes) = (self.skin, self.half, self.period, self.axes);
         let had_old = !old_i_start.is_empty();
         for a in range {
-            let (xa, ya, za, ra) = (x[a], y[a], z[a], radius[a]);
+            let [xa, ya, za, ra] = place[a].0;
             let fixed_a = inv_mass[a] == 0.0;
             let ix = axes[0].index(xa);
             let iy = axes[1].index(ya);
@@ -222,12 +222,18 @@ impl Grid<'_> {
                     for &ox in axes[0].offsets() {
                         let Some(cx) = axes[0].neighbour(ix, ox) else { continue };
                         let c = (cz * axes[1].n + cy) * axes[0].n + cx;
-                        for &b in &cell_items[cell_start[c]..cell_start[c + 1]] {
+                        // a cell lists its particles in increasing index order: the
+                        // partners b > a are a suffix, found without a branch per
+                        // candidate (half of them, unpredictable, were skipped one by one)
+                        let items = &cell_items[cell_start[c]..cell_start[c + 1]];
+                        let later = items.partition_point(|&b| b as usize <= a);
+                        for &b in &items[later..] {
                             let b = b as usize;
-                            if b <= a || (fixed_a && inv_mass[b] == 0.0) {
+                            if fixed_a && inv_mass[b] == 0.0 {
                                 continue;
                             }
-                            let mut d = [x[b] - xa, y[b] - ya, z[b] - za];
+                            let [xb, yb, zb, rb] = place[b].0;
+                            let mut d = [xb - xa, yb - ya, zb - za];
                             let mut s = [0.0; 3];
                             for k in 0..3 {
                                 s[k] = if d[k] > half[k] {
@@ -239,7 +245,7 @@ impl Grid<'_> {
                                 };
                                 d[k] += s[k];
                             }
-                            let reach = ra + radius[b] + skin;
+                            let reach = ra + rb + skin;
                             if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= reach * reach {
                                 continue;
                             }
@@ -252,7 +258,7 @@ impl Grid<'_> {
                             out.j.push(b as u32);
                             out.shift.push(s);
                             out.sqrt_m.push((1.0 / inv_m).sqrt());
-                            out.r_eff.push(ra * radius[b] / (ra + radius[b]));
+                            out.r_eff.push(ra * rb / (ra + rb));
                             out.hist.push(h);
                         }
                     }
@@ -416,11 +422,9 @@ impl NeighbourList {
         }
         // the rows of fixed chunks of particles in parallel, each into its own part, then
         // the parts end to end: the same pairs in the same order on any number of threads
+        p.places(&mut self.place);
         let grid = Grid {
-            x: &p.x,
-            y: &p.y,
-            z: &p.z,
-            radius: &p.radius,
+            place: &self.place,
             inv_mass: &p.inv_mass,
             cell_items: &self.cell_items,
             cell_start: &self.cell_start,

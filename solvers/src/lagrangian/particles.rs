@@ -23,6 +23,13 @@ impl Box3 {
     }
 }
 
+/// A particle's position and radius side by side, one aligned half cache line: the
+/// overlap tests of the pair loop and of the neighbour build read two of them at random,
+/// instead of four numbers from four arrays (four cache lines per particle).
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C, align(32))]
+pub struct Place(pub [f64; 4]);
+
 /// Spheres as a structure of arrays. Indices `0..n_mobile` are mobile particles,
 /// `n_mobile..len()` fixed ones (the rough bottom): fixed particles have zero inverse
 /// mass and inertia and are never integrated.
@@ -65,6 +72,22 @@ impl Particles {
     /// Whether there is no particle.
     pub fn is_empty(&self) -> bool {
         self.x.is_empty()
+    }
+
+    /// The positions and radii of every particle as records (the same numbers), into
+    /// `out` (reused).
+    pub fn places(&self, out: &mut Vec<Place>) {
+        out.resize(self.len(), Place::default());
+        self.places_from(0, out);
+    }
+
+    /// The records of the particles `first..first + out.len()` into `out`.
+    pub fn places_from(&self, first: usize, out: &mut [Place]) {
+        let r = first..first + out.len();
+        let pos = self.x[r.clone()].iter().zip(&self.y[r.clone()]).zip(&self.z[r.clone()]).zip(&self.radius[r]);
+        for (o, (((&x, &y), &z), &radius)) in out.iter_mut().zip(pos) {
+            *o = Place([x, y, z, radius]);
+        }
     }
 
     /// Add one sphere of radius `r` and density `rho` at `pos` with velocity `v` and
