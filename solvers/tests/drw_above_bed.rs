@@ -31,7 +31,7 @@ fn fluctuations_after_a_short_flow(drw: &str) -> (Vec<[f64; 3]>, Vec<f64>, f64) 
     (m.forces().fluctuations()[..nm].to_vec(), m.particles().z[..nm].to_vec(), d)
 }
 
-/// Grains more than 4 d below the top of a 6 d bed sit below any dense peak of phi: with
+/// Grains in the lowest 2 d of a 6 d bed sit below any dense peak of phi: with
 /// `above_bed` none of them carries a fluctuation, while without it the Reynolds stress the
 /// Li-Sawamoto mixing length leaves inside the bed (phi below phi_max) gives them some; the
 /// grains at the surface draw in both runs.
