@@ -16,6 +16,16 @@ pub fn bed_surface(zc: &[f64], phi: &[f64], fallback: f64) -> f64 {
     }
 }
 
+/// Bed elevation of the peer code's DRW (Maurin's 2017 YADE script of the Frey runs,
+/// `turbulentFluctuationPY`, read by `HydroForceEngine::turbulentFluctuation`): scanning
+/// the cells down from the top, the lower face of the first cell c >= 1 whose solid
+/// fraction exceeds `threshold` and is below that of the cell beneath it (the top of the
+/// highest peak above `threshold`); 0 (the column bottom) when no cell qualifies. Heights
+/// from the column bottom, cells of height `dz`.
+pub fn peak_bed_elevation(phi: &[f64], dz: f64, threshold: f64) -> f64 {
+    (1..phi.len()).rev().find(|&c| phi[c] > threshold && phi[c] < phi[c - 1]).map_or(0.0, |c| c as f64 * dz)
+}
+
 /// Flow scales of a fluctuation closure (Chassagne et al. 2023 eqs 4.3-4.4: the eddy
 /// turnover time of the depth and the bulk velocity): the fluid depth above the bed
 /// surface `bed` (m) of a column of height `height`, and the mean fluid velocity of the
@@ -114,6 +124,22 @@ mod tests {
         assert_eq!(s.depth, 2.5);
         assert_eq!(s.bulk_velocity, 1.5);
         assert_eq!(bed_surface(&zc, &[0.0; 4], 0.25), 0.25);
+    }
+
+    /// The peer script's bed: the highest peak above the threshold, read from the top.
+    /// A layered quasi-2D bed (peaks 0.7 and 0.65 at cells 2 and 5, a loose top layer
+    /// peaking at 0.45 in cell 8): with 0.5 the bed is the lower face of cell 6, the first
+    /// cell from the top above 0.5 on the upper flank of a peak; with 0.4 the loose layer's
+    /// flank (cell 9); above every value, or on a profile without a peak (phi rising to the
+    /// top), the column bottom.
+    #[test]
+    fn peak_bed_elevation_is_the_top_of_the_highest_dense_peak() {
+        let phi = [0.3, 0.6, 0.7, 0.55, 0.5, 0.65, 0.52, 0.2, 0.45, 0.41, 0.0, 0.0];
+        assert_eq!(peak_bed_elevation(&phi, 0.5, 0.5), 3.0);
+        assert_eq!(peak_bed_elevation(&phi, 0.5, 0.4), 4.5);
+        assert_eq!(peak_bed_elevation(&phi, 0.5, 0.75), 0.0);
+        assert_eq!(peak_bed_elevation(&[0.1, 0.2, 0.6, 0.7], 1.0, 0.5), 0.0);
+        assert_eq!(peak_bed_elevation(&[], 1.0, 0.5), 0.0);
     }
 
     /// The kernel evaluates C_D at the hindrance's declared Re*: Dallavalle C_D = 0.4 +

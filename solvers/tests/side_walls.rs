@@ -156,7 +156,7 @@ fn scene_table_needs_walls_and_a_coupled_fluid() {
     };
     let scene = load(&[]).expect("frey_sim6");
     assert_eq!(scene.closures.wall_friction.as_deref().map(|m| m.name()), Some("graf_altinakar"));
-    let off = load(&["closures.wall_friction.type=\"none\""]).expect("none");
+    let off = load(&["closures.wall_friction={type=\"none\"}"]).expect("none");
     assert_eq!(off.closures.wall_friction.as_deref().map(|m| m.poiseuille_number(1e4)), Some(0.0));
     for (sets, allowed) in [
         (&["solver.lagrangian.side_walls=false", "solver.lagrangian.width=0.12"][..], "side_walls = true"),

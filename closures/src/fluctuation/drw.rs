@@ -24,7 +24,15 @@ use saltus_core::DriftForm;
 ///   |[`FlowScales::bulk_velocity`]|. Give `period` (s) to impose a fixed redraw period.
 ///   `mean_field = "gradient"` (Chassagne eq 4.4); `ito` gives the flux -d(D phi)/dz, the
 ///   diffusion limit of draws whose amplitude is set where they are drawn ([`MeanField`]).
-/// * Valid range: `period` > 0 when given. Needs the Reynolds shear stress
+/// * `above_bed` absent: the draws apply at every height (Maurin et al. 2015 section II C 3
+///   says nothing of the bed). Give `above_bed = phi_b` for the DRW as the peer code
+///   applies it (YADE `HydroForceEngine::turbulentFluctuation` with the bed elevation of
+///   Maurin's 2017 script of the Frey runs, `turbulentFluctuationPY`, which uses phi_b =
+///   0.5): a particle whose centre is at or below the bed elevation when it draws gets no
+///   fluctuation until its next draw; the bed elevation is the top of the highest peak of
+///   the solid fraction above phi_b ([`saltus_core::Fluctuation::above_bed`]). The
+///   mean-field face is unchanged.
+/// * Valid range: `period` > 0 when given; `above_bed` in (0, 1). Needs the Reynolds shear stress
 ///   ([`TurbulencePoint::reynolds_stress`], already R_xz/(rho_f eps)), e.g. from
 ///   `mixing_length`; refused on laminar flow.
 ///
@@ -66,6 +74,10 @@ pub struct DiscreteRandomWalk {
     pub period: Option<f64>,
     /// mean-field form of the drift: `ito` (the draws' diffusion limit) or `gradient`
     pub mean_field: MeanField,
+    /// draw only above the bed: the top of the highest peak of phi above this value
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[param(range = "(0, 1)", unit = "-")]
+    pub above_bed: Option<f64>,
 }
 
 impl DiscreteRandomWalk {
@@ -105,6 +117,10 @@ impl Fluctuation for DiscreteRandomWalk {
 
     fn drift_form(&self) -> DriftForm {
         self.mean_field.form()
+    }
+
+    fn above_bed(&self) -> Option<f64> {
+        self.above_bed
     }
 
     fn diffusivity(&self, t: &TurbulencePoint, s: &FlowScales) -> f64 {
@@ -259,6 +275,42 @@ mod tests {
         assert!(DiscreteRandomWalk::default().validate().is_ok());
         assert_eq!(DiscreteRandomWalk::default().needs(), Needs::of(&[Field::ReynoldsStress]));
         assert!(toml::from_str::<DiscreteRandomWalk>("tau = 1.0").is_err());
+    }
+
+    #[test]
+    fn above_bed_is_validated_kept_and_leaves_draws_and_diffusivity_alone() {
+        for bad in [0.0, 1.0, -0.5, f64::NAN] {
+            let m = DiscreteRandomWalk { above_bed: Some(bad), ..DiscreteRandomWalk::default() };
+            assert_eq!(m.validate().unwrap_err().key, "above_bed");
+        }
+        let m = DiscreteRandomWalk { above_bed: Some(0.5), ..DiscreteRandomWalk::default() };
+        assert!(m.validate().is_ok());
+        assert_eq!(m.above_bed(), Some(0.5));
+        assert_eq!(DiscreteRandomWalk::default().above_bed(), None);
+        // the restriction is the solver's: the closure's draws and mean field are the
+        // paper's, stream for stream
+        let (mut a, mut b) = (stream(5, 1), stream(5, 1));
+        let plain = DiscreteRandomWalk::default();
+        for _ in 0..8 {
+            assert_eq!(
+                m.draw(&point(), &ParticleSlip::default(), &scales(), &mut a),
+                plain.draw(&point(), &ParticleSlip::default(), &scales(), &mut b)
+            );
+        }
+        assert_eq!(m.diffusivity(&point(), &scales()), plain.diffusivity(&point(), &scales()));
+        let b: Box<dyn Fluctuation> = Box::new(m);
+        let text = saltus_core::scene::to_toml_table(&b).unwrap();
+        assert!(text.contains("above_bed = 0.5"), "{text}");
+        let back: Box<dyn Fluctuation> = saltus_core::scene::closure_from_value(
+            toml::Value::Table(text.parse().unwrap()),
+            Family::Fluctuation,
+            std::path::Path::new("drw.toml"),
+            "closures.fluctuation",
+        )
+        .unwrap();
+        assert_eq!(back.above_bed(), Some(0.5));
+        let default_text = saltus_core::scene::to_toml_table(&(Box::new(plain) as Box<dyn Fluctuation>)).unwrap();
+        assert!(!default_text.contains("above_bed"));
     }
 
     proptest! {

@@ -84,6 +84,15 @@ pub trait Fluctuation: Describe + Send + Sync + std::fmt::Debug {
     /// Wall-normal particle diffusivity implied by the model (m^2/s).
     fn diffusivity(&self, t: &TurbulencePoint, s: &FlowScales) -> f64;
 
+    /// `Some(phi_b)`: a particle whose centre lies at or below the bed elevation when it
+    /// draws sees no fluctuation until its next draw, the bed elevation being the top of
+    /// the highest peak of the solid fraction above phi_b (the DEM's
+    /// `inputs::peak_bed_elevation`). `None` (the default): the draws apply everywhere.
+    /// Acts on the particles' draws only, not on the mean-field face.
+    fn above_bed(&self) -> Option<f64> {
+        None
+    }
+
     /// Diffusivity over a column.
     fn diffusivity_batch(&self, t: &[TurbulencePoint], s: &FlowScales, out: &mut [f64]) {
         for (o, tp) in out.iter_mut().zip(t) {

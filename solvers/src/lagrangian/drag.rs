@@ -350,6 +350,13 @@ impl FluidForces {
                             let ps = ParticleSlip { slip, response_time };
                             let draw = fl.draw(&tp, &ps, &field.scales, &mut rng[i]);
                             fluct[i] = draw.u;
+                            // the peer code's DRW spares the grains inside the bed; the draw
+                            // is made all the same, so the random streams do not depend on it
+                            if let Some(phi_b) = fl.above_bed() {
+                                if z - field.base <= crate::inputs::peak_bed_elevation(&field.phi, field.dz, phi_b) {
+                                    fluct[i] = [0.0; 3];
+                                }
+                            }
                             left[i] = if !draw.duration.is_finite() {
                                 // no turnover time yet (flow at rest): try again at the next
                                 // fluid update, still without a phase
