@@ -102,6 +102,7 @@ def main():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 
     fig, (ax, lin) = plt.subplots(1, 2, figsize=(10, 4.2))
     styles = {"drw": ("s", "k", "k", "with the DRW"), "nodrw": ("s", "none", "k", "without the DRW")}
@@ -129,13 +130,16 @@ def main():
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlim(0.02, 0.6)
+    ax.set_xticks([0.02, 0.05, 0.1, 0.2, 0.5])
+    ax.xaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     ax.set_ylim(1e-4, 10)
     ax.set_xlabel("theta* (largest Reynolds shear stress)")
     ax.set_ylabel("qs*")
     ax.legend(fontsize=7, loc="lower right")
     ax.set_title("Maurin et al. 2015 fig. 6 set-up, 100 s averages")
-    lin.set_xlim(0.0, 0.16)
-    lin.set_ylim(-0.01, 0.25)
+    lin.set_xlim(0.0, 0.2)
+    lin.set_ylim(-0.01, 0.4)
     lin.set_xlabel("theta*")
     lin.set_ylabel("qs*")
     lin.set_title("near the threshold (linear)")
