@@ -149,6 +149,17 @@ mod tests {
     fn point() -> TurbulencePoint {
         TurbulencePoint { reynolds_stress: SIGMA * SIGMA, ..TurbulencePoint::default() }
     }
+    /// The model a scene's `closures.fluctuation` table gives back.
+    fn read_back(text: &str) -> Box<dyn Fluctuation> {
+        saltus_core::scene::closure_from_value(
+            toml::Value::Table(text.parse().unwrap()),
+            Family::Fluctuation,
+            std::path::Path::new("drw.toml"),
+            "closures.fluctuation",
+        )
+        .unwrap()
+    }
+
     fn scales() -> FlowScales {
         FlowScales { depth: 0.1, bulk_velocity: 1.0 }
     }
@@ -220,13 +231,7 @@ mod tests {
         assert_eq!(m.diffusivity(&point(), &scales()), SIGMA * SIGMA * 0.5 / 2.0);
         let b: Box<dyn Fluctuation> = Box::new(m.clone());
         let text = saltus_core::scene::to_toml_table(&b).unwrap();
-        let back: Box<dyn Fluctuation> = saltus_core::scene::closure_from_value(
-            toml::Value::Table(text.parse().unwrap()),
-            Family::Fluctuation,
-            std::path::Path::new("drw.toml"),
-            "closures.fluctuation",
-        )
-        .unwrap();
+        let back = read_back(&text);
         assert_eq!(saltus_core::scene::to_toml_table(&back).unwrap(), text);
         assert_eq!(back.diffusivity(&point(), &scales()), m.diffusivity(&point(), &scales()));
         assert!(text.contains("period = 0.5"));
@@ -301,13 +306,7 @@ mod tests {
         let b: Box<dyn Fluctuation> = Box::new(m);
         let text = saltus_core::scene::to_toml_table(&b).unwrap();
         assert!(text.contains("above_bed = 0.5"), "{text}");
-        let back: Box<dyn Fluctuation> = saltus_core::scene::closure_from_value(
-            toml::Value::Table(text.parse().unwrap()),
-            Family::Fluctuation,
-            std::path::Path::new("drw.toml"),
-            "closures.fluctuation",
-        )
-        .unwrap();
+        let back = read_back(&text);
         assert_eq!(back.above_bed(), Some(0.5));
         let default_text = saltus_core::scene::to_toml_table(&(Box::new(plain) as Box<dyn Fluctuation>)).unwrap();
         assert!(!default_text.contains("above_bed"));
