@@ -278,6 +278,9 @@ def test_a_python_wall_friction_is_the_built_in_graf_altinakar_law(root):
     assert py["f_re"][0] == 48.0
     report = saltus.closure_check("wall_friction", {"type": "py_graf_altinakar"}, cases=64)
     assert report.passed, report.text
-    resolved = saltus.check(root / "cases/maurin2015/frey_sim6.toml", set={"closures.wall_friction.type": "py_graf_altinakar"})
+    # the whole table: the scene's own law carries a `coefficient` the Python law has not
+    resolved = saltus.check(
+        root / "cases/maurin2015/frey_sim6.toml", set={"closures.wall_friction": {"type": "py_graf_altinakar"}}
+    )
     assert resolved["closures"]["wall_friction"] == {"type": "py_graf_altinakar"}
     saltus.unregister_closure("wall_friction", "py_graf_altinakar")
