@@ -57,8 +57,8 @@ fn summary(dir: &Path) -> serde_json::Value {
 /// Run uninterrupted; run again stopped at the first unit of `phase` at or after `at`
 /// (simulated s of that phase), then restarted from the checkpoint that the stop wrote,
 /// into the same folder. Both must write the same bytes.
-fn stop_and_restart(name: &str, phase: Phase, at: f64) {
-    let s = scene(&[]);
+fn stop_and_restart(name: &str, phase: Phase, at: f64, extra: &[&str]) {
+    let s = scene(extra);
     let whole = tmp_out(&format!("{name}_whole"));
     let r = saltus_solvers::run(&s, &whole, &mut Quiet).expect("runs");
     assert_eq!(r.ending.name(), "end_time");
@@ -91,12 +91,27 @@ fn stop_and_restart(name: &str, phase: Phase, at: f64) {
 
 #[test]
 fn a_run_restarted_in_the_flow_ends_bit_for_bit_as_the_uninterrupted_one() {
-    stop_and_restart("flow", Phase::Flow, 0.055);
+    stop_and_restart("flow", Phase::Flow, 0.055, &[]);
 }
 
 #[test]
 fn a_run_restarted_in_the_deposition_ends_bit_for_bit_as_the_uninterrupted_one() {
-    stop_and_restart("deposition", Phase::Setup, 0.02);
+    stop_and_restart("deposition", Phase::Setup, 0.02, &[]);
+}
+
+/// The DRW that spares the grains inside the bed reads a bed elevation the solver derives
+/// from the solid fraction once per fluid update; a restored run must derive it again
+/// before its first draw. A fixed redraw period off the fluid period's multiples puts
+/// draws between the updates (the turnover time of this shallow bed is infinite, so the
+/// draws would otherwise all fall on update steps, after the bed elevation is derived).
+#[test]
+fn a_run_whose_drw_spares_the_bed_restarts_bit_for_bit() {
+    stop_and_restart(
+        "above_bed",
+        Phase::Flow,
+        0.055,
+        &["closures.fluctuation={type=\"drw\", above_bed=0.5, period=0.0037}"],
+    );
 }
 
 #[test]

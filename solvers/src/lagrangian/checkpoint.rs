@@ -144,6 +144,7 @@ impl Lagrangian<'_> {
         self.forces = s.forces;
         self.field = s.field;
         self.field.refresh();
+        self.field.set_bed_threshold(self.fluctuation.and_then(|f| f.above_bed()));
         self.column = s.column;
         self.sums = s.sums;
         (self.phi, self.u_p, self.beta, self.tau_t) = (phi, u_p, beta, tau_t);

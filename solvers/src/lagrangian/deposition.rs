@@ -131,6 +131,7 @@ impl Lagrangian<'_> {
         }
         let base = self.field.base;
         self.field = FluidField::at_rest(cells, dz, base);
+        self.field.set_bed_threshold(self.fluctuation.and_then(|f| f.above_bed()));
         self.sums = CellSums::new(cells);
         let v = |x: f64| vec![x; cells];
         self.phi = v(0.0);

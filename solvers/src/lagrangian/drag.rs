@@ -49,7 +49,7 @@ use super::particles::Particles;
 pub const MOMENT_SPAN: f64 = 80.0;
 
 /// Fluid fields the particles see, on the column's cells (uniform grid from z = `base`).
-#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct FluidField {
     /// height of the column bottom in particle coordinates (m): the top of the rough layer
     pub base: f64,
@@ -78,6 +78,12 @@ pub struct FluidField {
     /// [`Self::refresh`] (not saved; a restored field is refreshed)
     #[serde(skip)]
     moments: [Vec<f64>; 3],
+    /// height above `base` below which the fluctuation draws are spared
+    /// ([`saltus_core::Fluctuation::above_bed`]), derived from `phi` by
+    /// [`Self::set_bed_threshold`] once per fluid update rather than at each of the grains'
+    /// draws; -inf when the draws apply everywhere (not saved; a restored field is set again)
+    #[serde(skip)]
+    drw_floor: f64,
 }
 
 impl FluidField {
@@ -95,7 +101,18 @@ impl FluidField {
             hindrance: Vec::new(),
             scales: FlowScales::default(),
             moments: [vec![0.0; n + 1], vec![0.0; n + 1], vec![0.0; n + 1]],
+            drw_floor: f64::NEG_INFINITY,
         }
+    }
+
+    /// Derive from `phi` the height below which fluctuation draws are spared: the top of
+    /// the highest peak of phi above `threshold` ([`crate::inputs::peak_bed_elevation`]),
+    /// or nowhere for `None`. Call after `phi` changes.
+    pub fn set_bed_threshold(&mut self, threshold: Option<f64>) {
+        self.drw_floor = match threshold {
+            Some(phi_b) => crate::inputs::peak_bed_elevation(&self.phi, self.dz, phi_b),
+            None => f64::NEG_INFINITY,
+        };
     }
 
     /// Set the cell velocities and the moments [`Self::sphere_velocity`] reads.
@@ -352,10 +369,8 @@ impl FluidForces {
                             fluct[i] = draw.u;
                             // the peer code's DRW spares the grains inside the bed; the draw
                             // is made all the same, so the random streams do not depend on it
-                            if let Some(phi_b) = fl.above_bed() {
-                                if z - field.base <= crate::inputs::peak_bed_elevation(&field.phi, field.dz, phi_b) {
-                                    fluct[i] = [0.0; 3];
-                                }
+                            if z - field.base <= field.drw_floor {
+                                fluct[i] = [0.0; 3];
                             }
                             left[i] = if !draw.duration.is_finite() {
                                 // no turnover time yet (flow at rest): try again at the next

@@ -238,10 +238,12 @@ impl<'a> Lagrangian<'a> {
         }
         let v = |x: f64| vec![x; cells];
         let haff = haff_constant(&cfg, &dem.p, flow_body, d);
+        let mut field = FluidField::at_rest(cells, dz, cfg.rough_height(d));
+        field.set_bed_threshold(fluctuation.and_then(|f| f.above_bed()));
         Ok(Self {
             haff,
             scene,
-            field: FluidField::at_rest(cells, dz, cfg.rough_height(d)),
+            field,
             column,
             viscosity,
             turbulence,
@@ -342,6 +344,7 @@ impl<'a> Lagrangian<'a> {
             self.field.phi[c] = phi.min(0.99);
             self.field.re_ratio[c] = self.hindrance.reynolds_convention().ratio(phi.min(0.99));
         }
+        self.field.set_bed_threshold(self.fluctuation.and_then(|f| f.above_bed()));
         if self.re_free_hindrance {
             let n = self.field.phi.len();
             self.field.hindrance.resize(n, 1.0);
