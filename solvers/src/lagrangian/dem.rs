@@ -24,8 +24,8 @@ use super::contact::{contact_force, cross, ContactInput, ContactLaw, ContactMode
 use super::cylinders::{HalfCylinders, Sphere, Touches, MAX_TOUCHES};
 use super::granular::{contact_values, spread, ContactSums, End, Slices, WallRecord, GROUP};
 use super::neighbours::NeighbourList;
-use super::pairs::{Contact, Motion, Packed, PairOut, Touching};
-use super::particles::{Box3, Particles, Place};
+use super::pairs::{Contact, PairOut, Touching};
+use super::particles::{Box3, Particles};
 
 /// Particles per parallel work item: large enough to amortise scheduling, small enough
 /// to balance two cores. Every parallel loop of the DEM cuts its arrays into chunks of
@@ -70,9 +70,6 @@ pub(super) struct PairView<'a> {
     pub(super) r_eff: &'a [f64],
     pub(super) law: &'a ContactLaw,
     pub(super) dt: f64,
-    /// the same particles packed one record per particle, for the linear law's passes
-    pub(super) place: &'a [Place],
-    pub(super) motion: &'a [Motion],
 }
 
 impl PairView<'_> {
@@ -176,8 +173,6 @@ pub struct Dem {
     pair_t: Vec<[f64; 3]>,
     #[serde(skip)]
     touching: Touching,
-    #[serde(skip)]
-    packed: Packed,
     /// the granular-field sums of the last sampled step ([`Dem::step_sampled`])
     #[serde(skip)]
     contact: ContactSums,
@@ -209,7 +204,6 @@ impl Dem {
             pair_f: Vec::new(),
             pair_t: Vec::new(),
             touching: Touching::default(),
-            packed: Packed::default(),
             contact: ContactSums::default(),
             rebuild_due: true,
         }
@@ -316,9 +310,6 @@ impl Dem {
         self.pair_t.resize(np, [0.0; 3]);
         // the linear law in three passes, its force loop vectorised ([`super::pairs`])
         let lanes = self.law.model == ContactModel::Linear;
-        if lanes {
-            self.packed.fill(&self.p);
-        }
         let p = &self.p;
         let l = &mut self.list;
         let view = PairView {
@@ -333,8 +324,6 @@ impl Dem {
             r_eff: &l.r_eff,
             law: &self.law,
             dt: self.dt,
-            place: &self.packed.place,
-            motion: &self.packed.motion,
         };
         let (li, lj) = (&l.i, &l.j);
         let write =

@@ -19,19 +19,18 @@
 //! and division are correctly rounded in both, so both versions give the same bits and a
 //! run does not depend on the processor that runs it.
 //!
-//! Passes 1 and 2 read the particles at random, by the pairs' indices: from records
-//! packed once per step ([`Packed`]: position and radius in half a cache line, velocity
-//! and spin in one), not from the ten arrays of [`Particles`] (fifth pass).
+//! Passes 1 and 2 read the particles at random, by the pairs' indices, from the arrays
+//! of [`super::particles::Particles`]: records packed once per step (position and radius
+//! in half a cache line, velocity and spin in one) were tried in the fifth pass and
+//! removed in the sixth, having given no measurable gain (docs/benchmarks.md).
 
 use std::cell::RefCell;
 
 use multiversion::multiversion;
-use rayon::prelude::*;
 
 use super::contact::cross;
 use super::dem::{PairView, CHUNK};
 use super::neighbours::NeighbourList;
-use super::particles::{Particles, Place};
 
 // the compaction indexes its lanes with a mask of CHUNK - 1
 const _: () = assert!(CHUNK.is_power_of_two());
@@ -79,40 +78,6 @@ impl Lanes {
             t: z,
             power: [0.0; CHUNK],
         })
-    }
-}
-
-/// A particle's velocity and angular velocity (two numbers of padding), one aligned cache
-/// line: what pass 2 reads of the two grains of a contact.
-#[derive(Clone, Copy, Debug, Default)]
-#[repr(C, align(64))]
-pub(super) struct Motion(pub(super) [f64; 8]);
-
-/// The particle state the pair loop reads, copied once per step from [`Particles`] into
-/// one record per particle (the same numbers, so the same bits).
-#[derive(Clone, Debug, Default)]
-pub(super) struct Packed {
-    pub(super) place: Vec<Place>,
-    pub(super) motion: Vec<Motion>,
-}
-
-impl Packed {
-    /// The records of `p` (reused buffers), over the fixed chunks in parallel: serial, the
-    /// copy was 1.6 % of a step on two threads.
-    pub(super) fn fill(&mut self, p: &Particles) {
-        let n = p.len();
-        self.place.resize(n, Place::default());
-        self.motion.resize(n, Motion::default());
-        let out = self.place.par_chunks_mut(CHUNK).zip(self.motion.par_chunks_mut(CHUNK));
-        out.enumerate().for_each(|(c, (place, motion))| {
-            p.places_from(c * CHUNK, place);
-            let r = c * CHUNK..c * CHUNK + motion.len();
-            let v = p.vx[r.clone()].iter().zip(&p.vy[r.clone()]).zip(&p.vz[r.clone()]);
-            let w = p.wx[r.clone()].iter().zip(&p.wy[r.clone()]).zip(&p.wz[r]);
-            for (o, (((&vx, &vy), &vz), ((&wx, &wy), &wz))) in motion.iter_mut().zip(v.zip(w)) {
-                *o = Motion([vx, vy, vz, wx, wy, wz, 0.0, 0.0]);
-            }
-        });
     }
 }
 
@@ -185,14 +150,14 @@ impl PairView<'_> {
     fn linear_block(&self, o: usize, out: PairOut<'_>, l: &mut Lanes, each: &mut impl FnMut(Contact)) {
         let PairOut { hist, f: f_out, t: t_out, was } = out;
         let n = hist.len().min(CHUNK).min(f_out.len()).min(t_out.len()).min(was.len());
-        let (place, motion) = (self.place, self.motion);
+        let [x, y, z] = self.x;
         let (pi, pj, shift) = (&self.i[o..o + n], &self.j[o..o + n], &self.shift[o..o + n]);
         let mut m = 0;
         for (k, (((&a, &b), s), now)) in pi.iter().zip(pj).zip(shift).zip(&mut l.now[..n]).enumerate() {
-            let (pa, pb) = (&place[a as usize].0, &place[b as usize].0);
-            let d = [pb[0] + s[0] - pa[0], pb[1] + s[1] - pa[1], pb[2] + s[2] - pa[2]];
+            let (a, b) = (a as usize, b as usize);
+            let d = [x[b] + s[0] - x[a], y[b] + s[1] - y[a], z[b] + s[2] - z[a]];
             let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-            let reach = pa[3] + pb[3];
+            let reach = self.radius[a] + self.radius[b];
             let touch = r2 < reach * reach;
             *now = touch;
             // written for every pair, kept (m advanced) for the pairs in contact only;
@@ -214,24 +179,24 @@ impl PairView<'_> {
             }
             *w = now;
         }
+        let [wx, wy, wz] = self.w;
+        let [vx, vy, vz] = self.v;
         for c in 0..m.min(CHUNK) {
             let k = l.k[c] as usize;
             let q = o + k;
             let (a, b) = (self.i[q] as usize, self.j[q] as usize);
             let s = self.shift[q];
-            let (pa, pb) = (&place[a].0, &place[b].0);
-            l.d[0][c] = pb[0] + s[0] - pa[0];
-            l.d[1][c] = pb[1] + s[1] - pa[1];
-            l.d[2][c] = pb[2] + s[2] - pa[2];
-            let (ra, rb) = (pa[3], pb[3]);
+            l.d[0][c] = x[b] + s[0] - x[a];
+            l.d[1][c] = y[b] + s[1] - y[a];
+            l.d[2][c] = z[b] + s[2] - z[a];
+            let (ra, rb) = (self.radius[a], self.radius[b]);
             l.reach[c] = ra + rb;
-            let (ma, mb) = (&motion[a].0, &motion[b].0);
-            l.arm[0][c] = ra * ma[3] + rb * mb[3];
-            l.arm[1][c] = ra * ma[4] + rb * mb[4];
-            l.arm[2][c] = ra * ma[5] + rb * mb[5];
-            l.dv[0][c] = mb[0] - ma[0];
-            l.dv[1][c] = mb[1] - ma[1];
-            l.dv[2][c] = mb[2] - ma[2];
+            l.arm[0][c] = ra * wx[a] + rb * wx[b];
+            l.arm[1][c] = ra * wy[a] + rb * wy[b];
+            l.arm[2][c] = ra * wz[a] + rb * wz[b];
+            l.dv[0][c] = vx[b] - vx[a];
+            l.dv[1][c] = vy[b] - vy[a];
+            l.dv[2][c] = vz[b] - vz[a];
             l.sqrt_m[c] = self.sqrt_m[q];
             for (lane, &h) in l.h.iter_mut().zip(&hist[k]) {
                 lane[c] = h;
@@ -367,22 +332,6 @@ mod tests {
         // the repulsive law soft enough that a good part of the contacts pull (the
         // dashpot's c_n v_n above k_n delta) and are clipped
         let repulsive = ContactLaw::linear(10.0, 5.0, 0.7, 0.5).with_normal_force(NormalForce::Repulsive);
-        let [vx, vy, vz, wx, wy, wz] = vw.clone();
-        let p = Particles {
-            x: x.clone(),
-            y: y.clone(),
-            z: z.clone(),
-            vx,
-            vy,
-            vz,
-            wx,
-            wy,
-            wz,
-            radius: radius.clone(),
-            ..Default::default()
-        };
-        let mut packed = Packed::default();
-        packed.fill(&p);
         for law in [ContactLaw::linear(3.2e4, 1.6e4, 0.7, 0.5), repulsive] {
             let [vx, vy, vz, wx, wy, wz] = &vw;
             let view = PairView {
@@ -397,8 +346,6 @@ mod tests {
                 r_eff: &r_eff,
                 law: &law,
                 dt: 5e-5,
-                place: &packed.place,
-                motion: &packed.motion,
             };
             // a pair out of contact at the last step holds zeros; one in contact a history
             // and a force
