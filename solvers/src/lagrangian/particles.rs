@@ -77,17 +77,9 @@ impl Particles {
     /// The positions and radii of every particle as records (the same numbers), into
     /// `out` (reused).
     pub fn places(&self, out: &mut Vec<Place>) {
-        out.resize(self.len(), Place::default());
-        self.places_from(0, out);
-    }
-
-    /// The records of the particles `first..first + out.len()` into `out`.
-    pub fn places_from(&self, first: usize, out: &mut [Place]) {
-        let r = first..first + out.len();
-        let pos = self.x[r.clone()].iter().zip(&self.y[r.clone()]).zip(&self.z[r.clone()]).zip(&self.radius[r]);
-        for (o, (((&x, &y), &z), &radius)) in out.iter_mut().zip(pos) {
-            *o = Place([x, y, z, radius]);
-        }
+        out.clear();
+        let pos = self.x.iter().zip(&self.y).zip(&self.z).zip(&self.radius);
+        out.extend(pos.map(|(((&x, &y), &z), &radius)| Place([x, y, z, radius])));
     }
 
     /// Add one sphere of radius `r` and density `rho` at `pos` with velocity `v` and
