@@ -14,6 +14,10 @@ The fit is the paper's form (figure 6 caption, Wilson 1987): qs* = a (theta* - t
 by least squares over the points with qs* > `--qmin`: for each theta_c on a fine grid below
 the smallest fitted theta*, a is the linear least-squares slope, and the pair with the
 smallest residual is kept. The same fit with a fixed at Wilson's 11.8 is printed too.
+`--save FILE` writes the per-point table (series, nominal theta, theta*, qs*, its
+standard error, blocks, theta) as CSV; `--table FILE` reads such a table instead of
+RUNS_DIR (pass `-` for RUNS_DIR), so that a sweep run over several sessions, or its
+committed table (`docs/figures/maurin2015_fig6_30d.csv`), redraws without the run folders.
 Needs numpy and matplotlib (the figure only).
 """
 
@@ -71,10 +75,18 @@ def main():
     ap.add_argument("--qmin", type=float, default=1e-3)
     ap.add_argument("--out")
     ap.add_argument("--mpm")
+    ap.add_argument("--save")
+    ap.add_argument("--table", action="append", default=[])
     args = ap.parse_args()
 
     series = {}
-    for name in sorted(os.listdir(args.runs)):
+    for table in args.table:
+        for r in csv.DictReader(open(table)):
+            series.setdefault(r["series"], []).append(
+                (float(r["nominal"]), float(r["theta_star"]), float(r["qs_star"]), float(r["stderr"]),
+                 int(r["blocks"]), float(r["theta"])))
+    names = sorted(os.listdir(args.runs)) if args.runs != "-" else []
+    for name in names:
         folder = os.path.join(args.runs, name)
         if not os.path.isfile(os.path.join(folder, "summary.json")) or "_" not in name:
             continue
@@ -82,6 +94,14 @@ def main():
         s = json.load(open(os.path.join(folder, "summary.json")))
         m, e, nb = block_mean(folder, args.t0, args.t1, args.block)
         series.setdefault(tag, []).append((float(nominal), s["shields_turbulent"], m, e, nb, s["shields"]))
+
+    if args.save:
+        with open(args.save, "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(["series", "nominal", "theta_star", "qs_star", "stderr", "blocks", "theta"])
+            for tag, pts in sorted(series.items()):
+                for p in sorted(pts):
+                    w.writerow([tag, p[0], f"{p[1]:.6g}", f"{p[2]:.6g}", f"{p[3]:.6g}", p[4], f"{p[5]:.6g}"])
 
     fits = {}
     for tag, pts in sorted(series.items()):
