@@ -192,8 +192,7 @@ def test_an_unstable_run_returns_its_last_good_state(root, cli, tmp_path):
 def _long_run_set():
     # case 1 with no steady criterion: runs until stopped, or for a million steps (about
     # 40 s at 25000 steps per second on a loaded 2-core machine), so that an interrupt the
-    # run missed fails the test instead of hanging it (one CI run on a loaded machine hung
-    # here with no bound)
+    # run missed fails the test instead of hanging it
     return {
         "solver.eulerian.steady_tolerance": 0.0,
         "solver.eulerian.end_time": 1.0e9,
@@ -215,13 +214,20 @@ def test_ctrl_c_stops_the_run_writes_its_outputs_then_raises(root, tmp_path, how
 
             _thread.interrupt_main()
 
+    # Ctrl-C as a terminal delivers it: Python's handler on SIGINT. A process started in the
+    # background of a shell without job control inherits SIGINT ignored, and then neither
+    # the signal nor interrupt_main reaches Python (the run would go on to its end)
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Thread(target=fire)
     started = time.perf_counter()
     timer.start()
-    with pytest.raises(KeyboardInterrupt) as e:
-        saltus.run(root / CASE01, set=_long_run_set(), out=out)
+    try:
+        with pytest.raises(KeyboardInterrupt) as e:
+            saltus.run(root / CASE01, set=_long_run_set(), out=out)
+    finally:
+        timer.join()
+        signal.signal(signal.SIGINT, previous)
     elapsed = time.perf_counter() - started
-    timer.join()
     # signals are looked at every 0.2 s of wall time, then the outputs are written
     assert elapsed < delay + 0.2 + 2.0, elapsed
     result = e.value.result
