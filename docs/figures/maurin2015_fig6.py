@@ -92,6 +92,9 @@ def main():
             continue
         tag, nominal = name.rsplit("_", 1)
         s = json.load(open(os.path.join(folder, "summary.json")))
+        if s.get("ending") != "end_time":
+            print(f"skipped {name}: it ended with {s.get('ending')!r}, not at its end time")
+            continue
         m, e, nb = block_mean(folder, args.t0, args.t1, args.block)
         series.setdefault(tag, []).append((float(nominal), s["shields_turbulent"], m, e, nb, s["shields"]))
 
