@@ -16,7 +16,8 @@ the smallest fitted theta*, a is the linear least-squares slope, and the pair wi
 smallest residual is kept. The same fit with a fixed at Wilson's 11.8 is printed too.
 `--save FILE` writes the per-point table (series, nominal theta, theta*, qs*, its
 standard error, blocks, theta) as CSV; `--table FILE` reads such a table instead of
-RUNS_DIR (pass `-` for RUNS_DIR), so that a sweep run over several sessions, or its
+RUNS_DIR (pass `-` for RUNS_DIR; with both, a run folder replaces the table's row of its
+point), so that a sweep run over several sessions, or its
 committed table (`docs/figures/maurin2015_fig6_30d.csv`), redraws without the run folders.
 Needs numpy and matplotlib (the figure only).
 """
@@ -96,7 +97,9 @@ def main():
             print(f"skipped {name}: it ended with {s.get('ending')!r}, not at its end time")
             continue
         m, e, nb = block_mean(folder, args.t0, args.t1, args.block)
-        series.setdefault(tag, []).append((float(nominal), s["shields_turbulent"], m, e, nb, s["shields"]))
+        # a run folder replaces a table's row of the same point: never one point twice
+        pts = [p for p in series.get(tag, []) if p[0] != float(nominal)]
+        series[tag] = pts + [(float(nominal), s["shields_turbulent"], m, e, nb, s["shields"])]
 
     if args.save:
         with open(args.save, "w", newline="") as fh:
