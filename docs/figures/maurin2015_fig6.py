@@ -14,8 +14,12 @@ The fit is the paper's form (figure 6 caption, Wilson 1987): qs* = a (theta* - t
 by least squares over the points with qs* > `--qmin`: for each theta_c on a fine grid below
 the smallest fitted theta*, a is the linear least-squares slope, and the pair with the
 smallest residual is kept. The same fit with a fixed at Wilson's 11.8 is printed too.
-`--save FILE` writes the per-point table (series, nominal theta, theta*, qs*, its
-standard error, blocks, theta) as CSV; `--table FILE` reads such a table instead of
+`--late T` adds the mean over [T, t1) (default 60 s: the second half of the window), with
+its block error, and the same fits on it: the runs drift upwards over their window (the
+bed loosens slowly), so the late mean is the nearer estimate of the equilibrium rate and
+the difference between the two the drift. `--save FILE` writes the per-point table
+(series, nominal theta, theta*, qs*, its standard error, blocks, theta, the late mean and
+its standard error) as CSV; `--table FILE` reads such a table instead of
 RUNS_DIR (pass `-` for RUNS_DIR; with both, a run folder replaces the table's row of its
 point), so that a sweep run over several sessions, or its
 committed table (`docs/figures/maurin2015_fig6_30d.csv`), redraws without the run folders.
@@ -74,6 +78,7 @@ def main():
     ap.add_argument("--t1", type=float, default=110.0)
     ap.add_argument("--block", type=float, default=10.0)
     ap.add_argument("--qmin", type=float, default=1e-3)
+    ap.add_argument("--late", type=float, default=60.0)
     ap.add_argument("--out")
     ap.add_argument("--mpm")
     ap.add_argument("--save")
@@ -85,7 +90,8 @@ def main():
         for r in csv.DictReader(open(table)):
             series.setdefault(r["series"], []).append(
                 (float(r["nominal"]), float(r["theta_star"]), float(r["qs_star"]), float(r["stderr"]),
-                 int(r["blocks"]), float(r["theta"])))
+                 int(r["blocks"]), float(r["theta"]),
+                 float(r.get("qs_star_late") or "nan"), float(r.get("stderr_late") or "nan")))
     names = sorted(os.listdir(args.runs)) if args.runs != "-" else []
     for name in names:
         folder = os.path.join(args.runs, name)
@@ -97,31 +103,42 @@ def main():
             print(f"skipped {name}: it ended with {s.get('ending')!r}, not at its end time")
             continue
         m, e, nb = block_mean(folder, args.t0, args.t1, args.block)
+        ml, el, _ = block_mean(folder, args.late, args.t1, args.block)
         # a run folder replaces a table's row of the same point: never one point twice
         pts = [p for p in series.get(tag, []) if p[0] != float(nominal)]
-        series[tag] = pts + [(float(nominal), s["shields_turbulent"], m, e, nb, s["shields"])]
+        series[tag] = pts + [(float(nominal), s["shields_turbulent"], m, e, nb, s["shields"], ml, el)]
 
     if args.save:
         with open(args.save, "w", newline="") as fh:
             w = csv.writer(fh)
-            w.writerow(["series", "nominal", "theta_star", "qs_star", "stderr", "blocks", "theta"])
+            w.writerow(["series", "nominal", "theta_star", "qs_star", "stderr", "blocks", "theta",
+                        "qs_star_late", "stderr_late"])
             for tag, pts in sorted(series.items()):
                 for p in sorted(pts):
-                    w.writerow([tag, p[0], f"{p[1]:.6g}", f"{p[2]:.6g}", f"{p[3]:.6g}", p[4], f"{p[5]:.6g}"])
+                    late = [f"{v:.6g}" if math.isfinite(v) else "" for v in p[6:8]]
+                    w.writerow([tag, p[0], f"{p[1]:.6g}", f"{p[2]:.6g}", f"{p[3]:.6g}", p[4], f"{p[5]:.6g}"] + late)
 
     fits = {}
     for tag, pts in sorted(series.items()):
         pts.sort()
         print(f"\n{tag}: nominal theta | theta* | qs* +- stderr ({args.block:g}-s blocks, "
-              f"{args.t0:g}-{args.t1:g} s) | theta (largest fluid stress)")
+              f"{args.t0:g}-{args.t1:g} s) | qs* +- stderr ({args.late:g}-{args.t1:g} s) | "
+              f"theta (largest fluid stress)")
         for p in pts:
-            print(f"| {p[0]:g} | {p[1]:.4f} | {p[2]:.4g} +- {p[3]:.2g} | {p[5]:.4f} |")
+            print(f"| {p[0]:g} | {p[1]:.4f} | {p[2]:.4g} +- {p[3]:.2g} | {p[6]:.4g} +- {p[7]:.2g} | {p[5]:.4f} |")
         f = fit(np.array([p[1] for p in pts]), np.array([p[2] for p in pts]), args.qmin)
         fits[tag] = f
         if f:
             print(f"fit over {f['n']} points with qs* > {args.qmin:g}: a = {f['a']:.2f}, "
                   f"theta_c = {f['theta_c']:.4f} (rms {f['rms']:.3g}); a = 11.8 fixed: "
                   f"theta_c = {f['theta_c_wilson']:.4f} (rms {f['rms_wilson']:.3g})")
+        late = np.array([p[6] for p in pts])
+        if np.isfinite(late).all():
+            fl = fit(np.array([p[1] for p in pts]), late, args.qmin)
+            if fl:
+                print(f"late means ({args.late:g}-{args.t1:g} s), {fl['n']} points: a = {fl['a']:.2f}, "
+                      f"theta_c = {fl['theta_c']:.4f} (rms {fl['rms']:.3g}); a = 11.8 fixed: "
+                      f"theta_c = {fl['theta_c_wilson']:.4f} (rms {fl['rms_wilson']:.3g})")
 
     if not args.out:
         return
