@@ -133,7 +133,10 @@ def main():
                   f"theta_c = {f['theta_c']:.4f} (rms {f['rms']:.3g}); a = 11.8 fixed: "
                   f"theta_c = {f['theta_c_wilson']:.4f} (rms {f['rms_wilson']:.3g})")
         late = np.array([p[6] for p in pts])
-        if np.isfinite(late).all():
+        if not np.isfinite(late).all():
+            print(f"no late fit: {int((~np.isfinite(late)).sum())} point(s) without a late mean "
+                  f"(a table written before --late, or a window shorter than one block)")
+        else:
             fl = fit(np.array([p[1] for p in pts]), late, args.qmin)
             if fl:
                 print(f"late means ({args.late:g}-{args.t1:g} s), {fl['n']} points: a = {fl['a']:.2f}, "
