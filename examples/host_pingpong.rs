@@ -12,6 +12,11 @@ use std::time::Instant;
 
 fn main() {
     let n: u64 = std::env::args().nth(1).and_then(|a| a.parse().ok()).filter(|&n| n > 0).unwrap_or(1_000_000);
+    // two spinning threads on one core would hand the line over once per time slice
+    if std::thread::available_parallelism().map_or(1, |c| c.get()) < 2 {
+        eprintln!("host_pingpong needs two cores; this machine offers one");
+        std::process::exit(2);
+    }
     let flag = AtomicU64::new(0);
     let elapsed = std::thread::scope(|s| {
         s.spawn(|| {
