@@ -71,6 +71,14 @@ def fit(theta, qs, qmin):
             "theta_c_wilson": wil, "rms_wilson": math.sqrt(rw / n)}
 
 
+def show_fit(label, f, qmin):
+    """Print one fit of `fit` (nothing when there were too few points to fit)."""
+    if f:
+        print(f"{label}, {f['n']} points with qs* > {qmin:g}: a = {f['a']:.2f}, "
+              f"theta_c = {f['theta_c']:.4f} (rms {f['rms']:.3g}); a = 11.8 fixed: "
+              f"theta_c = {f['theta_c_wilson']:.4f} (rms {f['rms_wilson']:.3g})")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("runs")
@@ -126,22 +134,16 @@ def main():
               f"theta (largest fluid stress)")
         for p in pts:
             print(f"| {p[0]:g} | {p[1]:.4f} | {p[2]:.4g} +- {p[3]:.2g} | {p[6]:.4g} +- {p[7]:.2g} | {p[5]:.4f} |")
-        f = fit(np.array([p[1] for p in pts]), np.array([p[2] for p in pts]), args.qmin)
+        theta_star = np.array([p[1] for p in pts])
+        f = fit(theta_star, np.array([p[2] for p in pts]), args.qmin)
         fits[tag] = f
-        if f:
-            print(f"fit over {f['n']} points with qs* > {args.qmin:g}: a = {f['a']:.2f}, "
-                  f"theta_c = {f['theta_c']:.4f} (rms {f['rms']:.3g}); a = 11.8 fixed: "
-                  f"theta_c = {f['theta_c_wilson']:.4f} (rms {f['rms_wilson']:.3g})")
+        show_fit(f"fit over the {args.t0:g}-{args.t1:g} s means", f, args.qmin)
         late = np.array([p[6] for p in pts])
         if not np.isfinite(late).all():
             print(f"no late fit: {int((~np.isfinite(late)).sum())} point(s) without a late mean "
                   f"(a table written before --late, or a window shorter than one block)")
         else:
-            fl = fit(np.array([p[1] for p in pts]), late, args.qmin)
-            if fl:
-                print(f"late means ({args.late:g}-{args.t1:g} s), {fl['n']} points: a = {fl['a']:.2f}, "
-                      f"theta_c = {fl['theta_c']:.4f} (rms {fl['rms']:.3g}); a = 11.8 fixed: "
-                      f"theta_c = {fl['theta_c_wilson']:.4f} (rms {fl['rms_wilson']:.3g})")
+            show_fit(f"fit over the late means ({args.late:g}-{args.t1:g} s)", fit(theta_star, late, args.qmin), args.qmin)
 
     if not args.out:
         return
