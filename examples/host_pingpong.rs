@@ -10,8 +10,20 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
+/// Most round trips asked for: about ten minutes at the far placement's 380 ns.
+const MAX_TRIPS: u64 = 1_000_000_000;
+
 fn main() {
-    let n: u64 = std::env::args().nth(1).and_then(|a| a.parse().ok()).filter(|&n| n > 0).unwrap_or(1_000_000);
+    let n = match std::env::args().nth(1) {
+        None => 1_000_000,
+        Some(a) => match a.parse::<u64>() {
+            Ok(n) if (1..=MAX_TRIPS).contains(&n) => n,
+            _ => {
+                eprintln!("host_pingpong: round trips `{a}`: a whole number from 1 to {MAX_TRIPS} is allowed");
+                std::process::exit(2);
+            }
+        },
+    };
     // two spinning threads on one core would hand the line over once per time slice
     if std::thread::available_parallelism().map_or(1, |c| c.get()) < 2 {
         eprintln!("host_pingpong needs two cores; this machine offers one");
