@@ -1,6 +1,7 @@
 //! The DRW as the peer code applies it (`closures.fluctuation.above_bed`, YADE
 //! `HydroForceEngine::turbulentFluctuation` with the bed elevation of Maurin's 2017 script of
-//! the Frey runs): the grains inside the bed draw no fluctuation.
+//! the Frey runs): the grains inside the bed draw no fluctuation; and its third, spanwise
+//! component (`closures.fluctuation.spanwise`).
 
 mod common;
 
@@ -58,4 +59,24 @@ fn grains_inside_the_bed_draw_no_fluctuation_with_above_bed() {
     let is_deep = deep(&z, d);
     let deep_moving = fl.iter().zip(&z).filter(|(f, &zp)| is_deep(zp) && moving(f)).count();
     assert!(deep_moving > 0, "without above_bed no deep grain carries a fluctuation: the test shows nothing");
+}
+
+/// With `spanwise` (and a redraw period of 0.01 s, so that every grain has drawn within the
+/// 0.1 s) the grains that draw see u'_y of the same variance as u'_z (both sigma^2
+/// at each grain, so the ratio of the sums over the N drawing grains is 1 within about
+/// sqrt(2 / N) per sum; the bound 0.6-1.6 is over four of those for N > 100); without it no
+/// grain sees a spanwise fluctuation.
+#[test]
+fn spanwise_draws_reach_the_grains_with_the_variance_of_the_normal_ones() {
+    let (fl, _, _) = fluctuations_after_a_short_flow("{type=\"drw\", spanwise=true, period=0.01}");
+    let drawing: Vec<&[f64; 3]> = fl.iter().filter(|f| f[2] != 0.0).collect();
+    assert!(drawing.len() > 100, "{} grains draw", drawing.len());
+    let syy: f64 = drawing.iter().map(|f| f[1] * f[1]).sum();
+    let szz: f64 = drawing.iter().map(|f| f[2] * f[2]).sum();
+    assert!((0.6..1.6).contains(&(syy / szz)), "<u_y^2> / <u_z^2> = {}", syy / szz);
+    assert!(drawing.iter().all(|f| f[1] != 0.0));
+
+    let (fl, _, _) = fluctuations_after_a_short_flow("{type=\"drw\", period=0.01}");
+    assert!(fl.iter().any(|f| f[2] != 0.0));
+    assert!(fl.iter().all(|f| f[1] == 0.0));
 }

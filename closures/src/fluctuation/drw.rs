@@ -32,6 +32,12 @@ use saltus_core::DriftForm;
 ///   fluctuation until its next draw; the bed elevation is the top of the highest peak of
 ///   the solid fraction above phi_b ([`saltus_core::Fluctuation::above_bed`]). The
 ///   mean-field face is unchanged.
+/// * `spanwise = false`: u'_y = 0, the paper's two components. `spanwise = true` adds the
+///   peer code's third, u'_y = sigma lambda_3 with lambda_3 ~ N(0, 1) drawn after lambda_1
+///   and lambda_2 (YADE `HydroForceEngine::turbulentFluctuation`, 2017, which draws three
+///   normals per grain). In a channel one grain wide it pushes the grains onto the side
+///   walls, where they rub (`particles.wall_friction`). The mean field is unchanged (the
+///   diffusivity is wall-normal).
 /// * Valid range: `period` > 0 when given; `above_bed` in (0, 1). Needs the Reynolds shear stress
 ///   ([`TurbulencePoint::reynolds_stress`], already R_xz/(rho_f eps)), e.g. from
 ///   `mixing_length`; refused on laminar flow.
@@ -50,8 +56,9 @@ use saltus_core::DriftForm;
 /// upper bound.
 ///
 /// Decisions:
-/// * Maurin's model is two-component (x, z); u'_y = 0.
-/// * Random numbers: two standard normals per draw, lambda_1 first, always consumed.
+/// * Maurin's model is two-component (x, z); u'_y = 0 unless `spanwise`.
+/// * Random numbers: two standard normals per draw, lambda_1 first, always consumed; a third
+///   after them with `spanwise`, so x and z are the same draws with or without it.
 /// * A negative or NaN `reynolds_stress` counts as 0 (no fluctuation).
 /// * When no turnover time is defined (bulk velocity 0, zero or non-finite depth) the draw
 ///   holds forever (`duration = inf`) and D = 0 (a frozen velocity is ballistic, not
@@ -78,6 +85,9 @@ pub struct DiscreteRandomWalk {
     #[serde(skip_serializing_if = "Option::is_none")]
     #[param(range = "(0, 1)", unit = "-")]
     pub above_bed: Option<f64>,
+    /// draw the spanwise component too (the peer code's three components)
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub spanwise: bool,
 }
 
 impl DiscreteRandomWalk {
@@ -112,7 +122,13 @@ impl Fluctuation for DiscreteRandomWalk {
         let l1: f64 = StandardNormal.sample(rng);
         let l2: f64 = StandardNormal.sample(rng);
         let uz = sigma * l1;
-        FluctuationDraw { u: [-uz + sigma * l2, 0.0, uz], duration: self.turnover_time(s) }
+        let uy = if self.spanwise {
+            let l3: f64 = StandardNormal.sample(rng);
+            sigma * l3
+        } else {
+            0.0
+        };
+        FluctuationDraw { u: [-uz + sigma * l2, uy, uz], duration: self.turnover_time(s) }
     }
 
     fn drift_form(&self) -> DriftForm {
@@ -310,6 +326,56 @@ mod tests {
         assert_eq!(back.above_bed(), Some(0.5));
         let default_text = saltus_core::scene::to_toml_table(&(Box::new(plain) as Box<dyn Fluctuation>)).unwrap();
         assert!(!default_text.contains("above_bed"));
+    }
+
+    #[test]
+    fn spanwise_component_is_the_peer_codes_third_normal() {
+        // N = 200 000 draws: <u_y> = 0 +- sigma sqrt(1/N), <u_y^2> = sigma^2 +- sigma^2
+        // sqrt(2/N), <u_x u_y> = 0 +- sigma^2 sqrt(2/N), <u_y u_z> = 0 +- sigma^2 sqrt(1/N);
+        // tolerance 4 standard errors. The x and z parts are the default's draws.
+        let m = DiscreteRandomWalk { spanwise: true, ..DiscreteRandomWalk::default() };
+        let plain = DiscreteRandomWalk::default();
+        let (mut a, mut b) = (stream(9, 2), stream(9, 2));
+        let (one, two) = (
+            m.draw(&point(), &ParticleSlip::default(), &scales(), &mut a),
+            plain.draw(&point(), &ParticleSlip::default(), &scales(), &mut b),
+        );
+        assert_eq!((one.u[0], one.u[2]), (two.u[0], two.u[2]));
+        assert_ne!(one.u[1], 0.0);
+        let n = 200_000;
+        let mut rng = stream(2017, 0);
+        let (mut sy, mut syy, mut sxy, mut syz) = (0.0, 0.0, 0.0, 0.0);
+        for _ in 0..n {
+            let d = m.draw(&point(), &ParticleSlip::default(), &scales(), &mut rng);
+            sy += d.u[1];
+            syy += d.u[1] * d.u[1];
+            sxy += d.u[0] * d.u[1];
+            syz += d.u[1] * d.u[2];
+        }
+        let nf = n as f64;
+        let s2 = SIGMA * SIGMA;
+        let tol = |c: f64| 4.0 * c * (1.0 / nf).sqrt();
+        assert!((sy / nf).abs() < tol(SIGMA));
+        assert!((syy / nf - s2).abs() < tol(s2 * 2f64.sqrt()), "<u_y^2> = {}", syy / nf);
+        assert!((sxy / nf).abs() < tol(s2 * 2f64.sqrt()), "<u_x u_y> = {}", sxy / nf);
+        assert!((syz / nf).abs() < tol(s2), "<u_y u_z> = {}", syz / nf);
+        assert_eq!(m.diffusivity(&point(), &scales()), plain.diffusivity(&point(), &scales()));
+        let text = saltus_core::scene::to_toml_table(&(Box::new(m) as Box<dyn Fluctuation>)).unwrap();
+        assert!(text.contains("spanwise = true"), "{text}");
+        let back = read_back(&text);
+        let (mut c, mut d) = (stream(3, 3), stream(3, 3));
+        assert_eq!(
+            back.draw(&point(), &ParticleSlip::default(), &scales(), &mut c),
+            DiscreteRandomWalk { spanwise: true, ..DiscreteRandomWalk::default() }.draw(
+                &point(),
+                &ParticleSlip::default(),
+                &scales(),
+                &mut d
+            )
+        );
+        let default_text = saltus_core::scene::to_toml_table(&(Box::new(plain) as Box<dyn Fluctuation>)).unwrap();
+        assert!(!default_text.contains("spanwise"));
+        assert!(toml::from_str::<DiscreteRandomWalk>("spanwise = 1").is_err());
     }
 
     proptest! {
