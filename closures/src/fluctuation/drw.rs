@@ -180,6 +180,22 @@ mod tests {
         FlowScales { depth: 0.1, bulk_velocity: 1.0 }
     }
 
+    /// Sample means and second moments <u_i u_j> of `n` draws from `stream(seed, 0)`.
+    fn moments(m: &DiscreteRandomWalk, seed: u64, n: usize) -> ([f64; 3], [[f64; 3]; 3]) {
+        let mut rng = stream(seed, 0);
+        let (mut mean, mut uu) = ([0.0; 3], [[0.0; 3]; 3]);
+        for _ in 0..n {
+            let d = m.draw(&point(), &ParticleSlip::default(), &scales(), &mut rng);
+            for ((m_i, uu_i), u_i) in mean.iter_mut().zip(uu.iter_mut()).zip(d.u) {
+                *m_i += u_i / n as f64;
+                for (uu_ij, u_j) in uu_i.iter_mut().zip(d.u) {
+                    *uu_ij += u_i * u_j / n as f64;
+                }
+            }
+        }
+        (mean, uu)
+    }
+
     #[test]
     fn second_moments_match_maurin() {
         // N = 200 000 draws, fixed seed. Standard errors of the sample moments for Gaussian
@@ -188,26 +204,19 @@ mod tests {
         // sigma sqrt(2/N). Tolerance: 4 standard errors.
         let m = DiscreteRandomWalk::default();
         let n = 200_000;
-        let mut rng = stream(2015, 0);
-        let (mut sx, mut sz, mut sxx, mut szz, mut sxz) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        for _ in 0..n {
-            let d = m.draw(&point(), &ParticleSlip::default(), &scales(), &mut rng);
-            assert_eq!(d.u[1], 0.0);
-            assert_eq!(d.duration, 0.1);
-            sx += d.u[0];
-            sz += d.u[2];
-            sxx += d.u[0] * d.u[0];
-            szz += d.u[2] * d.u[2];
-            sxz += d.u[0] * d.u[2];
-        }
+        let d = m.draw(&point(), &ParticleSlip::default(), &scales(), &mut stream(2015, 1));
+        assert_eq!(d.duration, 0.1);
+        let (mean, uu) = moments(&m, 2015, n);
+        assert_eq!((mean[1], uu[1][1]), (0.0, 0.0));
+        let (sx, sz, sxx, szz, sxz) = (mean[0], mean[2], uu[0][0], uu[2][2], uu[0][2]);
         let nf = n as f64;
         let s2 = SIGMA * SIGMA;
         let tol = |c: f64| 4.0 * c * (1.0 / nf).sqrt();
-        assert!((sz / nf).abs() < tol(SIGMA));
-        assert!((sx / nf).abs() < tol(SIGMA * 2f64.sqrt()));
-        assert!((szz / nf - s2).abs() < tol(s2 * 2f64.sqrt()), "<u_z^2> = {}", szz / nf);
-        assert!((sxz / nf + s2).abs() < tol(s2 * 3f64.sqrt()), "<u_x u_z> = {}", sxz / nf);
-        assert!((sxx / nf - 2.0 * s2).abs() < tol(s2 * 8f64.sqrt()), "<u_x^2> = {}", sxx / nf);
+        assert!(sz.abs() < tol(SIGMA));
+        assert!(sx.abs() < tol(SIGMA * 2f64.sqrt()));
+        assert!((szz - s2).abs() < tol(s2 * 2f64.sqrt()), "<u_z^2> = {szz}");
+        assert!((sxz + s2).abs() < tol(s2 * 3f64.sqrt()), "<u_x u_z> = {sxz}");
+        assert!((sxx - 2.0 * s2).abs() < tol(s2 * 8f64.sqrt()), "<u_x^2> = {sxx}");
     }
 
     #[test]
@@ -343,22 +352,15 @@ mod tests {
         assert_eq!((one.u[0], one.u[2]), (two.u[0], two.u[2]));
         assert_ne!(one.u[1], 0.0);
         let n = 200_000;
-        let mut rng = stream(2017, 0);
-        let (mut sy, mut syy, mut sxy, mut syz) = (0.0, 0.0, 0.0, 0.0);
-        for _ in 0..n {
-            let d = m.draw(&point(), &ParticleSlip::default(), &scales(), &mut rng);
-            sy += d.u[1];
-            syy += d.u[1] * d.u[1];
-            sxy += d.u[0] * d.u[1];
-            syz += d.u[1] * d.u[2];
-        }
+        let (mean, uu) = moments(&m, 2017, n);
+        let (sy, syy, sxy, syz) = (mean[1], uu[1][1], uu[0][1], uu[1][2]);
         let nf = n as f64;
         let s2 = SIGMA * SIGMA;
         let tol = |c: f64| 4.0 * c * (1.0 / nf).sqrt();
-        assert!((sy / nf).abs() < tol(SIGMA));
-        assert!((syy / nf - s2).abs() < tol(s2 * 2f64.sqrt()), "<u_y^2> = {}", syy / nf);
-        assert!((sxy / nf).abs() < tol(s2 * 2f64.sqrt()), "<u_x u_y> = {}", sxy / nf);
-        assert!((syz / nf).abs() < tol(s2), "<u_y u_z> = {}", syz / nf);
+        assert!(sy.abs() < tol(SIGMA));
+        assert!((syy - s2).abs() < tol(s2 * 2f64.sqrt()), "<u_y^2> = {syy}");
+        assert!(sxy.abs() < tol(s2 * 2f64.sqrt()), "<u_x u_y> = {sxy}");
+        assert!(syz.abs() < tol(s2), "<u_y u_z> = {syz}");
         assert_eq!(m.diffusivity(&point(), &scales()), plain.diffusivity(&point(), &scales()));
         let text = saltus_core::scene::to_toml_table(&(Box::new(m) as Box<dyn Fluctuation>)).unwrap();
         assert!(text.contains("spanwise = true"), "{text}");
