@@ -13,7 +13,7 @@ use saltus_core::DriftForm;
 
 /// Discrete random walk (DRW) tied to the Reynolds shear stress
 ///
-/// u'_z = lambda_1,  u'_x = -u'_z + lambda_2,  u'_y = 0,  lambda_1, lambda_2 ~ N(0, sigma^2),
+/// u'_z = lambda_1,  u'_x = -u'_z + lambda_2,  u'_y = 0 (lambda_3 with `spanwise`),  lambda_i ~ N(0, sigma^2),
 /// sigma = sqrt(R_xz / (rho_f eps)), held for tau_t = w_d / U_f;
 /// so <u'_x u'_z> = -sigma^2, <u'_z^2> = sigma^2, <u'_x^2> = 2 sigma^2.
 ///
@@ -72,7 +72,7 @@ use saltus_core::DriftForm;
 #[describe(
     name = "drw",
     source = "Maurin et al. 2015 eqs 15-16",
-    equation = "u_z = l1, u_x = -u_z + l2, l1,l2 ~ N(0, R_xz/(rho_f eps)), held tau = depth/U; D = sigma^2 tau/2"
+    equation = "u_z = l1, u_x = -u_z + l2, u_y = 0 (l3 with spanwise), l1,l2,l3 ~ N(0, R_xz/(rho_f eps)), held tau = depth/U; D = sigma^2 tau/2"
 )]
 pub struct DiscreteRandomWalk {
     /// fixed redraw period
