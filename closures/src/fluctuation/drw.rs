@@ -72,7 +72,7 @@ use saltus_core::DriftForm;
 #[describe(
     name = "drw",
     source = "Maurin et al. 2015 eqs 15-16",
-    equation = "u_z = l1, u_x = -u_z + l2, u_y = 0 (l3 with spanwise), l1,l2,l3 ~ N(0, R_xz/(rho_f eps)), held tau = depth/U; D = sigma^2 tau/2"
+    equation = "u_z = l1, u_x = -u_z + l2, l1,l2 ~ N(0, R_xz/(rho_f eps)), held tau = depth/U; D = sigma^2 tau/2"
 )]
 pub struct DiscreteRandomWalk {
     /// fixed redraw period
