@@ -17,10 +17,22 @@ integral of phi v_p over the profile, times the channel width W = 6.5 mm, over t
 of a bead), the elevations (in d) where phi falls through 0.4, 0.25, 0.1 and 0.02, the
 elevation of the largest flux density, and the particle velocity at the bed top (phi =
 0.25) and 1 d and 2 d above it. Needs numpy and matplotlib (the figure only).
+
+    python3 docs/figures/maurin2015_frey_profiles.py --windows RUN [--window 40]
+
+instead reads the ParaView snapshots of one run (`solver.lagrangian.vtk_period`, in
+RUN/vtk) and prints the same measures for each window of `--window` bead diameters along
+the periodic cell (the measurements' window is 40 d long, the paper's figure 3), averaged
+over all the snapshots: their mean, standard deviation and range, with the whole cell
+over the same snapshots, and the range of phi inside the bed (3.1 to 6.6 d). The grains'
+volumes are cut by the cells of the run's column exactly (sphere caps), as the solver's
+averages are.
 """
 
 import argparse
+import base64
 import csv
+import glob
 import math
 import os
 import re
@@ -87,12 +99,104 @@ def show(tag, m):
     print(f"| {tag} | {rate:6.2f} | {lv} | {peak:5.2f} | {sp} |")
 
 
+def vtp_arrays(path):
+    """The Float64 arrays of a saltus VTK PolyData file (base64, UInt64 byte count)."""
+    text = open(path).read()
+    out = {}
+    pattern = r'<DataArray type="Float64" Name="(\w+)" NumberOfComponents="(\d)" format="binary">([^<]*)</DataArray>'
+    for name, comps, data in re.findall(pattern, text):
+        raw = base64.b64decode(data.strip())
+        count = int(np.frombuffer(raw[:8], dtype="<u8")[0])
+        out[name] = np.frombuffer(raw[8 : 8 + count], dtype="<f8").reshape(-1, int(comps))
+    return out
+
+
+def below(zc, r, h):
+    """Volume of the spheres of centres zc and radii r below the heights h."""
+    s = np.clip(h - (zc - r), 0.0, 2.0 * r)
+    return math.pi * s * s * (3.0 * r - s) / 3.0
+
+
+def windows(run, window, length):
+    """Solid volume and streamwise momentum per window of the cell and per column cell,
+    summed over the run's snapshots; the column's cell height and the snapshot count."""
+    columns = sorted(glob.glob(os.path.join(run, "vtk", "column_*.vtp")))
+    snaps = sorted(glob.glob(os.path.join(run, "vtk", "particles_*.vtp")))
+    if not columns or not snaps:
+        raise SystemExit(f"{run}/vtk holds no snapshots: run with --set solver.lagrangian.vtk_period=T")
+    zc = vtp_arrays(columns[0])["Points"][:, 2]
+    dz = zc[1] - zc[0]
+    base, n = zc[0] - dz / 2.0, len(zc)
+    count = max(1, int(round(length / window)))
+    vol, mom = np.zeros((count, n)), np.zeros((count, n))
+    for path in snaps:
+        a = vtp_arrays(path)
+        mobile = a["fixed"][:, 0] == 0 if "fixed" in a else slice(None)
+        p, vx, r = a["Points"][mobile], a["velocity"][mobile, 0], a["radius"][mobile, 0]
+        k = np.minimum((np.mod(p[:, 0], length) / (length / count)).astype(int), count - 1)
+        z = p[:, 2] - base
+        cells = np.floor((z - r) / dz).astype(int)[:, None] + np.arange(int(np.ceil(2 * r.max() / dz)) + 2)
+        w = below(z[:, None], r[:, None], (cells + 1) * dz) - below(z[:, None], r[:, None], cells * dz)
+        ok = (cells >= 0) & (cells < n) & (w > 0)
+        kk = np.broadcast_to(k[:, None], cells.shape)
+        np.add.at(vol, (kk[ok], cells[ok]), w[ok])
+        np.add.at(mom, (kk[ok], cells[ok]), (w * vx[:, None])[ok])
+    return vol, mom, dz, len(snaps), length / count
+
+
+def window_report(run, window):
+    import tomllib
+
+    path = os.path.join(run, "scene.toml")
+    try:
+        length = float(tomllib.load(open(path, "rb"))["solver"]["lagrangian"]["length"])
+    except (OSError, KeyError, ValueError, tomllib.TOMLDecodeError) as e:
+        raise SystemExit(f"{path}: no solver.lagrangian.length ({e})")
+    vol, mom, dz, snaps, wl = windows(run, window * D, length)
+    z = (np.arange(vol.shape[1]) + 0.5) * dz / D
+    bed = (z > 3.1) & (z < 6.6)
+
+    def profile(v, mo, length):
+        phi = v / (snaps * length * WIDTH * dz)
+        return z, phi, np.where(v > 0, mo / np.where(v > 0, v, 1.0), 0.0)
+
+    per = [profile(vol[k], mom[k], wl) for k in range(vol.shape[0])]
+    ms = [metrics(*pr) for pr in per]
+    width = np.array([m[1][2] - m[1][0] for m in ms])
+    top = np.array([m[1][1] for m in ms])
+    speed = np.array([m[3] for m in ms])
+    lo = np.array([pr[1][bed].min() for pr in per])
+    hi = np.array([pr[1][bed].max() for pr in per])
+    print(f"{vol.shape[0]} windows of {wl / D:.0f} d over {snaps} snapshots")
+    print("| profile | phi 0.4 -> 0.1 (d) | bed top, z/d at phi = 0.25 | v_p at the bed top (m/s) | v_p 2 d above it | phi in the bed (3.1-6.6 d) |")
+    print("|---|---|---|---|---|---|")
+    print(
+        f"| windows: mean +- sd [range] | {width.mean():.2f} +- {width.std():.2f} [{width.min():.2f}, {width.max():.2f}]"
+        f" | {top.mean():.2f} +- {top.std():.2f} | {speed[:, 0].mean():.3f} +- {speed[:, 0].std():.3f}"
+        f" [{speed[:, 0].min():.3f}, {speed[:, 0].max():.3f}] | {speed[:, 2].mean():.3f} +- {speed[:, 2].std():.3f}"
+        f" | {lo.mean():.2f}-{hi.mean():.2f} on average; widest {lo.min():.2f}-{hi.max():.2f} |"
+    )
+    whole = profile(vol.sum(0), mom.sum(0), wl * vol.shape[0])
+    _, lv, _, sp = metrics(*whole)
+    print(
+        f"| the whole cell | {lv[2] - lv[0]:.2f} | {lv[1]:.2f} | {sp[0]:.3f} | {sp[2]:.3f}"
+        f" | {whole[1][bed].min():.2f}-{whole[1][bed].max():.2f} |"
+    )
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("runs", nargs=3, help="output folders of Sim6, Sim14 and Sim20")
-    ap.add_argument("--exp", required=True, help="folder holding Frey2014_EXP{6,14,20}.py")
+    ap.add_argument("runs", nargs="*", help="output folders of Sim6, Sim14 and Sim20")
+    ap.add_argument("--exp", help="folder holding Frey2014_EXP{6,14,20}.py")
     ap.add_argument("--out", help="figure file")
+    ap.add_argument("--windows", metavar="RUN", help="window statistics from RUN's snapshots instead")
+    ap.add_argument("--window", type=float, default=40.0, help="window length in bead diameters (default 40)")
     args = ap.parse_args()
+    if args.windows:
+        window_report(args.windows, args.window)
+        return
+    if len(args.runs) != 3 or not args.exp:
+        ap.error("give the three run folders (Sim6, Sim14, Sim20) and --exp, or --windows RUN")
 
     print("| profile | beads/s | z/d where phi = 0.4, 0.25, 0.1, 0.02 | z/d of the largest flux | v_p (m/s) at the bed top, +1 d, +2 d |")
     print("|---|---:|---|---:|---|")
