@@ -152,6 +152,10 @@ def window_report(run, window):
         length = float(tomllib.load(open(path, "rb"))["solver"]["lagrangian"]["length"])
     except (OSError, KeyError, ValueError, tomllib.TOMLDecodeError) as e:
         raise SystemExit(f"{path}: no solver.lagrangian.length ({e})")
+    if not (math.isfinite(length) and length > 0.0):
+        raise SystemExit(f"{path}: solver.lagrangian.length = {length}, not a cell length")
+    if window * D > length:
+        raise SystemExit(f"--window {window:g} d is longer than the cell ({length / D:g} d)")
     vol, mom, dz, snaps, wl = windows(run, window * D, length)
     z = (np.arange(vol.shape[1]) + 0.5) * dz / D
     bed = (z > 3.1) & (z < 6.6)
@@ -193,6 +197,8 @@ def main():
     ap.add_argument("--window", type=float, default=40.0, help="window length in bead diameters (default 40)")
     args = ap.parse_args()
     if args.windows:
+        if not (math.isfinite(args.window) and args.window >= 1.0):
+            ap.error(f"--window {args.window}: a window of at least 1 bead diameter is allowed")
         window_report(args.windows, args.window)
         return
     if len(args.runs) != 3 or not args.exp:
