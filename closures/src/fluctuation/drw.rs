@@ -180,6 +180,12 @@ mod tests {
         FlowScales { depth: 0.1, bulk_velocity: 1.0 }
     }
 
+    /// Four standard errors of a sample mean over `n` draws of a quantity whose standard
+    /// deviation is `c`: the tolerance of the moment tests.
+    fn four_standard_errors(c: f64, n: usize) -> f64 {
+        4.0 * c / (n as f64).sqrt()
+    }
+
     /// Sample means and second moments <u_i u_j> of `n` draws from `stream(seed, 0)`.
     fn moments(m: &DiscreteRandomWalk, seed: u64, n: usize) -> ([f64; 3], [[f64; 3]; 3]) {
         let mut rng = stream(seed, 0);
@@ -209,9 +215,8 @@ mod tests {
         let (mean, uu) = moments(&m, 2015, n);
         assert_eq!((mean[1], uu[1][1]), (0.0, 0.0));
         let (sx, sz, sxx, szz, sxz) = (mean[0], mean[2], uu[0][0], uu[2][2], uu[0][2]);
-        let nf = n as f64;
         let s2 = SIGMA * SIGMA;
-        let tol = |c: f64| 4.0 * c * (1.0 / nf).sqrt();
+        let tol = |c: f64| four_standard_errors(c, n);
         assert!(sz.abs() < tol(SIGMA));
         assert!(sx.abs() < tol(SIGMA * 2f64.sqrt()));
         assert!((szz - s2).abs() < tol(s2 * 2f64.sqrt()), "<u_z^2> = {szz}");
@@ -354,9 +359,8 @@ mod tests {
         let n = 200_000;
         let (mean, uu) = moments(&m, 2017, n);
         let (sy, syy, sxy, syz) = (mean[1], uu[1][1], uu[0][1], uu[1][2]);
-        let nf = n as f64;
         let s2 = SIGMA * SIGMA;
-        let tol = |c: f64| 4.0 * c * (1.0 / nf).sqrt();
+        let tol = |c: f64| four_standard_errors(c, n);
         assert!(sy.abs() < tol(SIGMA));
         assert!((syy - s2).abs() < tol(s2 * 2f64.sqrt()), "<u_y^2> = {syy}");
         assert!(sxy.abs() < tol(s2 * 2f64.sqrt()), "<u_x u_y> = {sxy}");
