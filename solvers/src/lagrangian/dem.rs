@@ -33,6 +33,21 @@ use super::particles::{Box3, Particles};
 /// every rounding, are the same whatever the number of threads.
 pub const CHUNK: usize = 256;
 
+/// The most chunks one task of a parallel loop runs in a row. rayon's splitter hands each
+/// thread a run of many chunks that the other cannot steal from once it has started; in a
+/// large system such a run outlasts the other thread's work, which then idles long enough
+/// to fall asleep and must be woken at the next loop (about once per step from 4660
+/// grains on). Single-chunk tasks keep the tail of every loop short. On one thread the
+/// splitting would only cost, so it is left to rayon there. The chunks, and with them every
+/// rounding, are the same either way.
+pub fn chunks_per_task() -> usize {
+    if rayon::current_num_threads() > 1 {
+        1
+    } else {
+        usize::MAX
+    }
+}
+
 /// A flat wall at `position` along `axis`; particles live on the side `sign` (+1: above).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Wall {
@@ -333,8 +348,11 @@ impl Dem {
             // each pair owns its history, its output slots and its flag: chunks of the
             // four arrays zipped, pair q = chunk start + k
             let pairs = (l.hist.par_chunks_mut(CHUNK), self.pair_f.par_chunks_mut(CHUNK));
-            (pairs, self.pair_t.par_chunks_mut(CHUNK), was.par_chunks_mut(CHUNK)).into_par_iter().enumerate().for_each(
-                |(c, ((hist, pf), pt, was))| {
+            (pairs, self.pair_t.par_chunks_mut(CHUNK), was.par_chunks_mut(CHUNK))
+                .into_par_iter()
+                .enumerate()
+                .with_max_len(chunks_per_task())
+                .for_each(|(c, ((hist, pf), pt, was))| {
                     let o = c * CHUNK;
                     if lanes {
                         view.linear_pairs(o, PairOut { hist, f: pf, t: pt, was }, |_| {});
@@ -343,8 +361,7 @@ impl Dem {
                     for (k, ((h, f_out), t_out)) in hist.iter_mut().zip(pf.iter_mut()).zip(pt.iter_mut()).enumerate() {
                         write(o + k, h, f_out, t_out);
                     }
-                },
-            );
+                });
             return;
         }
         // the same in groups of GROUP pairs, each adding its contacts to its own slab
@@ -359,6 +376,7 @@ impl Dem {
         )
             .into_par_iter()
             .enumerate()
+            .with_max_len(chunks_per_task())
             .for_each(|(c, (hist, pf, pt, was, slab))| {
                 let o = c * GROUP;
                 let mut add = |(q, d, f, power): Contact| {
@@ -420,6 +438,7 @@ impl Dem {
         (pos.into_par_iter(), vel.into_par_iter(), spin.into_par_iter(), wall_hist, cyl_hist, records)
             .into_par_iter()
             .enumerate()
+            .with_max_len(chunks_per_task())
             .map(|(c, ((x, y, z), (vx, vy, vz), (wx, wy, wz), wh, ch, mut rec))| {
                 let o = c * CHUNK;
                 let mut moved = false;

@@ -41,7 +41,7 @@ use saltus_core::{DragLaw, FlowScales, Fluctuation, Hindrance, ParticleSlip, Tur
 
 use rayon::prelude::*;
 
-use super::dem::CHUNK;
+use super::dem::{chunks_per_task, CHUNK};
 use super::particles::Particles;
 
 /// Largest column height, in grain radii, for which [`FluidField::sphere_velocity`] uses
@@ -335,8 +335,11 @@ impl FluidForces {
                 .into_par_iter()
                 .map(Some)
                 .chain((0..without).into_par_iter().map(|_| None));
-        (state.into_par_iter(), scratch.into_par_iter(), outputs).into_par_iter().enumerate().for_each(
-            |(c, ((k, urx, fluct, left, fresh, rng), (re, re_star, cd, hind, phi_p, ur), out))| {
+        (state.into_par_iter(), scratch.into_par_iter(), outputs)
+            .into_par_iter()
+            .enumerate()
+            .with_max_len(chunks_per_task())
+            .for_each(|(c, ((k, urx, fluct, left, fresh, rng), (re, re_star, cd, hind, phi_p, ur), out))| {
                 let o = c * CHUNK;
                 let n = k.len();
                 for i in 0..n {
@@ -415,8 +418,7 @@ impl FluidForces {
                         oz[i] = k[i] * ur[i][2];
                     }
                 }
-            },
-        );
+            });
     }
 
     /// Restart every fluctuation clock (first draw with a random phase at the next

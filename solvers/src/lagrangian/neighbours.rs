@@ -36,7 +36,7 @@
 
 use rayon::prelude::*;
 
-use super::dem::CHUNK;
+use super::dem::{chunks_per_task, CHUNK};
 use super::particles::{Box3, Particles, Place};
 
 /// Pair list with history.
@@ -443,7 +443,7 @@ impl NeighbourList {
         if self.parts.len() < parts {
             self.parts.resize_with(parts, Rows::default);
         }
-        self.parts[..parts].par_iter_mut().enumerate().for_each(|(c, part)| {
+        self.parts[..parts].par_iter_mut().enumerate().with_max_len(chunks_per_task()).for_each(|(c, part)| {
             part.clear();
             grid.rows(c * len..((c + 1) * len).min(n), part);
         });
