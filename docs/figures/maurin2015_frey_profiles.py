@@ -46,28 +46,51 @@ RUNS = (6, 14, 20)
 LEVELS = (0.4, 0.25, 0.1, 0.02)
 
 
-def read_array(text, name):
+def read_text(path):
+    try:
+        with open(path) as f:
+            return f.read()
+    except (OSError, UnicodeDecodeError) as e:
+        raise SystemExit(f"{path}: cannot be read ({e})")
+
+
+def numbers(path, what, values):
+    """The finite numbers of `values`, or an exit naming the file and what they were."""
+    try:
+        a = np.array([float(v) for v in values])
+    except ValueError as e:
+        raise SystemExit(f"{path}: {what} holds a value that is not a number ({e})")
+    if len(a) < 2:
+        raise SystemExit(f"{path}: {what} needs at least two values, has {len(a)}")
+    if not np.isfinite(a).all():
+        raise SystemExit(f"{path}: {what} holds a value that is not finite")
+    return a
+
+
+def read_array(path, text, name):
     m = re.search(name + r"\s*=\s*array\(\[([^\]]*)\]\)", text)
     if m is None:
-        raise SystemExit(f"no array `{name}` in the experimental file")
-    return np.array([float(v) for v in m.group(1).replace("\n", " ").split(",") if v.strip()])
+        raise SystemExit(f"{path}: no array `{name}` (zData, alphasData and usData are needed)")
+    return numbers(path, name, [v for v in m.group(1).replace("\n", " ").split(",") if v.strip()])
 
 
 def experiment(folder, sim):
     path = os.path.join(folder, f"Frey2014_EXP{sim}.py")
-    text = open(path).read()
-    z, phi, vp = (read_array(text, n) for n in ("zData", "alphasData", "usData"))
+    text = read_text(path)
+    z, phi, vp = (read_array(path, text, n) for n in ("zData", "alphasData", "usData"))
     if not len(z) == len(phi) == len(vp):
         raise SystemExit(f"{path}: zData, alphasData and usData differ in length")
     return z, phi, vp
 
 
 def simulation(folder):
-    rows = list(csv.DictReader(open(os.path.join(folder, "profiles.csv"))))
-    z = np.array([float(r["z"]) for r in rows]) / D
-    phi = np.array([float(r["phi"]) for r in rows])
-    vp = np.array([float(r["u_p"]) for r in rows])
-    return z, phi, vp
+    path = os.path.join(folder, "profiles.csv")
+    rows = list(csv.DictReader(read_text(path).splitlines()))
+    missing = [c for c in ("z", "phi", "u_p") if rows and c not in rows[0]]
+    if missing:
+        raise SystemExit(f"{path}: no column {', '.join(missing)} (a saltus DEM run's profiles.csv is needed)")
+    z, phi, vp = (numbers(path, f"column {c}", [r[c] for r in rows]) for c in ("z", "phi", "u_p"))
+    return z / D, phi, vp
 
 
 def falls_through(z, phi, level):
@@ -101,7 +124,7 @@ def show(tag, m):
 
 def vtp_arrays(path):
     """The Float64 arrays of a saltus VTK PolyData file (base64, UInt64 byte count)."""
-    text = open(path).read()
+    text = read_text(path)
     out = {}
     pattern = r'<DataArray type="Float64" Name="(\w+)" NumberOfComponents="(\d)" format="binary">([^<]*)</DataArray>'
     for name, comps, data in re.findall(pattern, text):
@@ -124,15 +147,21 @@ def windows(run, window, length):
     snaps = sorted(glob.glob(os.path.join(run, "vtk", "particles_*.vtp")))
     if not columns or not snaps:
         raise SystemExit(f"{run}/vtk holds no snapshots: run with --set solver.lagrangian.vtk_period=T")
-    zc = vtp_arrays(columns[0])["Points"][:, 2]
+    zc = vtp_arrays(columns[0]).get("Points", np.zeros((0, 3)))[:, 2]
+    if len(zc) < 2:
+        raise SystemExit(f"{columns[0]}: not a saltus column snapshot (two cells at least are needed)")
     dz = zc[1] - zc[0]
     base, n = zc[0] - dz / 2.0, len(zc)
     count = max(1, int(round(length / window)))
     vol, mom = np.zeros((count, n)), np.zeros((count, n))
     for path in snaps:
         a = vtp_arrays(path)
+        if not {"Points", "velocity", "radius"} <= a.keys():
+            raise SystemExit(f"{path}: not a saltus particle snapshot (Points, velocity and radius are needed)")
         mobile = a["fixed"][:, 0] == 0 if "fixed" in a else slice(None)
         p, vx, r = a["Points"][mobile], a["velocity"][mobile, 0], a["radius"][mobile, 0]
+        if len(r) == 0:
+            continue
         k = np.minimum((np.mod(p[:, 0], length) / (length / count)).astype(int), count - 1)
         z = p[:, 2] - base
         cells = np.floor((z - r) / dz).astype(int)[:, None] + np.arange(int(np.ceil(2 * r.max() / dz)) + 2)
