@@ -36,7 +36,7 @@ fn coupled_step(c: &mut Criterion) {
             m.deposit().expect("deposition");
             // let the flow start so that the bed moves and contacts change
             for _ in 0..50 {
-                assert!(m.step().is_none());
+                assert!(m.step_unit().is_none());
             }
         });
         group.throughput(Throughput::Elements(m.mobile() as u64));
@@ -64,7 +64,7 @@ fn peer_step(c: &mut Criterion) {
             // the flow accelerates from rest: after 2 s the grains saltate (qs* about 0.03,
             // the neighbour list rebuilt every few steps at 0.22)
             while m.time() < 2.0 {
-                assert!(m.step().is_none());
+                assert!(m.step_unit().is_none());
             }
         });
         group.throughput(Throughput::Elements(m.mobile() as u64));

@@ -27,7 +27,7 @@ fn case01(c: &mut Criterion) {
         group.bench_function(format!("{cells}_cells"), |b| {
             b.iter(|| {
                 let mut m = Eulerian::new(&scene, cfg.clone()).expect("solver");
-                let ending = drive(&mut m, &mut Quiet).0;
+                let ending = drive(&mut m, &mut Quiet).ending;
                 assert_eq!(ending, Ending::Steady);
                 m.steps()
             })
@@ -46,7 +46,7 @@ fn channel_k_omega(c: &mut Criterion) {
     group.bench_function("eulerian_120_stretched", |b| {
         b.iter(|| {
             let mut m = Eulerian::new(&scene, cfg.clone()).expect("solver");
-            assert_eq!(drive(&mut m, &mut Quiet).0, Ending::Steady);
+            assert_eq!(drive(&mut m, &mut Quiet).ending, Ending::Steady);
             m.steps()
         })
     });
@@ -96,7 +96,7 @@ fn sheet_flow_and_dilute(c: &mut Criterion) {
         group.bench_function(rel, |b| {
             b.iter(|| {
                 let mut m = Eulerian::new(&scene, cfg.clone()).expect("solver");
-                let ending = drive(&mut m, &mut Quiet).0;
+                let ending = drive(&mut m, &mut Quiet).ending;
                 assert_eq!(ending, Ending::Steady, "{rel}");
                 m.steps()
             })

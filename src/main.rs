@@ -53,6 +53,11 @@ enum Command {
         /// step cap, threads and [output] may change)
         #[arg(long, value_name = "DIR")]
         restart: Option<PathBuf>,
+        /// stop the run after SECONDS of wall-clock time, writing its outputs (and a DEM
+        /// checkpoint to continue from with --restart) as at its end; the summary's ending
+        /// is `wall_clock`
+        #[arg(long, value_name = "SECONDS")]
+        max_wall: Option<f64>,
         /// wall-clock seconds between two progress lines when stderr is not a terminal
         #[arg(long, value_name = "SECONDS", default_value_t = saltus::runner::LOG_INTERVAL)]
         log_interval: f64,
@@ -217,9 +222,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             outln!("# {} resolved: every default filled in, ranges and closure needs checked", scene.display());
             out!("{}", s.to_toml()?);
         }
-        Command::Run { scene, set, out, restart, log_interval, quiet, json } => {
+        Command::Run { scene, set, out, restart, max_wall, log_interval, quiet, json } => {
             if !(log_interval.is_finite() && log_interval > 0.0 && log_interval <= 1e9) {
                 anyhow::bail!("--log-interval {log_interval}: must be a number of seconds in (0, 1e9]");
+            }
+            if let Some(w) = max_wall.filter(|w| !(w.is_finite() && *w >= 0.0 && *w <= 1e9)) {
+                anyhow::bail!("--max-wall {w}: must be a number of seconds in [0, 1e9]");
             }
             // the solver's set-up inside `run` is `validate` (`resolve`), refused before
             // any output is written: loading the schema is all that is left to do here
@@ -232,6 +240,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let settings = saltus::runner::RunSettings {
                 restart,
                 log_every: (!quiet).then(|| std::time::Duration::from_secs_f64(log_interval)),
+                max_wall,
             };
             let outcome = saltus::runner::run_scene(&s, &out, &bar, &settings);
             if !quiet {

@@ -39,11 +39,13 @@ pub struct RunSettings {
     pub restart: Option<PathBuf>,
     /// wall time between two progress lines on a hidden bar; `None`: no lines (`--quiet`)
     pub log_every: Option<Duration>,
+    /// stop the run after this many wall-clock seconds (`--max-wall`)
+    pub max_wall: Option<f64>,
 }
 
 impl Default for RunSettings {
     fn default() -> Self {
-        Self { restart: None, log_every: Some(Duration::from_secs_f64(LOG_INTERVAL)) }
+        Self { restart: None, log_every: Some(Duration::from_secs_f64(LOG_INTERVAL)), max_wall: None }
     }
 }
 
@@ -119,7 +121,7 @@ impl RunOutcome {
                     ),
                 })
             }
-            Ending::Steady | Ending::EndTime | Ending::MaxSteps => None,
+            Ending::Steady | Ending::EndTime | Ending::MaxSteps | Ending::WallClock => None,
         }
     }
 }
@@ -286,7 +288,7 @@ pub fn run_scene_with(
         }
         Control::Continue
     };
-    let options = saltus_solvers::RunOptions { restart: settings.restart.clone() };
+    let options = saltus_solvers::RunOptions { restart: settings.restart.clone(), max_wall: settings.max_wall };
     let result = saltus_solvers::run_with(scene, out, &mut observer, &options);
     bar.finish_and_clear();
     let run = result?;
@@ -303,7 +305,7 @@ pub fn run_scene_with(
         _ if scene.closures.failure().is_some() => scene.closures.failure(),
         Ending::Unstable(b) => Some(format!("unstable at {b}")),
         Ending::Interrupted => Some(format!("interrupted at t = {} s", decimal(run.report.summary.sim_time_s))),
-        Ending::Steady | Ending::EndTime | Ending::MaxSteps => None,
+        Ending::Steady | Ending::EndTime | Ending::MaxSteps | Ending::WallClock => None,
     };
     Ok(RunOutcome { ending: Some(run.ending), report: Some(run.report), error, figure, warnings, wall: run.wall })
 }

@@ -36,7 +36,7 @@ fn solve(cells: usize, max_phi_change: f64) -> Result {
     for _ in 0..3 {
         let mut m = Eulerian::new(&scene, cfg.clone()).expect("solver");
         let t = Instant::now();
-        let ending = drive(&mut m, &mut Quiet).0;
+        let ending = drive(&mut m, &mut Quiet).ending;
         best = best.min(t.elapsed().as_secs_f64());
         let scale = (1.5f64 * 9.81 * 6e-3f64.powi(3)).sqrt();
         let qs: f64 = m.phi().iter().zip(m.u_p()).zip(m.dz()).map(|((p, u), h)| p * u * h).sum();

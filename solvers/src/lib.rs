@@ -73,12 +73,15 @@ pub fn resolve(scene: &Scene) -> Result<Box<dyn Stepper + '_>, Error> {
     })
 }
 
-/// How a run starts.
+/// How a run starts and what, besides the scene, may stop it.
 #[derive(Clone, Debug, Default)]
 pub struct RunOptions {
     /// continue from the checkpoint in this folder (or this file) instead of the scene's
     /// initial state ([`run::checkpoint`])
     pub restart: Option<PathBuf>,
+    /// stop after this many wall-clock seconds ([`Ending::WallClock`]; the outputs and a
+    /// checkpoint are written as at any other end)
+    pub max_wall: Option<f64>,
 }
 
 /// Run `scene`, writing its outputs into `out`. `observer` sees every unit of work and
@@ -130,12 +133,20 @@ pub fn run_with(
         stepper.restore(&r.state).map_err(fail)?;
     }
     let mut recorder = run::Recorder::start(out, scene, stepper.as_ref(), restart.as_ref())?;
-    stepper.set_output_dir(out);
-    let (ending, wall) = run::drive_recorded(stepper.as_mut(), observer, Some(&mut recorder));
-    let report = stepper.report(&ending, wall);
+    let resumed = recorder.resumed_clock();
+    let driven = run::drive_with(stepper.as_mut(), &mut [&mut recorder, observer], options.max_wall, resumed);
+    let mut report = stepper.report(&driven.ending, &driven.clock);
+    let timing = driven.timing(stepper.as_ref());
+    report.text.push_str("; ");
+    report.text.push_str(&timing.line());
+    report.summary.timing = Some(timing);
+    if let Some(e) = recorder.paraview_error() {
+        report.text.push_str("; ");
+        report.text.push_str(e);
+    }
     output::write_run(out, scene, &report.profiles, &report.summary)?;
     recorder.finish()?;
-    Ok(RunOutcome { ending, report, wall })
+    Ok(RunOutcome { ending: driven.ending, report, wall: driven.clock.wall })
 }
 
 /// Refuse a checkpoint written for another solver or a scene that differs from `scene`

@@ -156,6 +156,9 @@ pub struct Summary {
     /// step: over `total_steps`)
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub neighbour_builds: Option<usize>,
+    /// wall time of the run in this process by stage ([`crate::run::timing::Timing`])
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub timing: Option<crate::run::timing::Timing>,
 }
 
 /// `manifest.json`: enough to reproduce the run.

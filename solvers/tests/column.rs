@@ -543,7 +543,7 @@ fn k_omega_channel_matches_the_eulerian_solver() {
     let cfg = Config::from_scene(&scene).expect("config");
     let (n, ratio, h) = (cfg.cells, cfg.domain.stretching, cfg.domain.water_depth);
     let mut eul = Eulerian::new(&scene, cfg).expect("solver");
-    assert_eq!(drive(&mut eul, &mut Quiet).0, Ending::Steady);
+    assert_eq!(drive(&mut eul, &mut Quiet).ending, Ending::Steady);
     let (k_e, w_e) = eul.k_omega().expect("k-omega state");
 
     let ko = turbulence("type = \"k_omega\"");

@@ -29,7 +29,7 @@
 use std::path::Path;
 
 use saltus_core::scene::Scene;
-use saltus_solvers::lagrangian::averaging::sphere_slices;
+use saltus_solvers::lagrangian::engine::slicing::sphere_slices;
 use saltus_solvers::lagrangian::{Config, Lagrangian};
 use saltus_solvers::run::Stepper;
 
@@ -137,7 +137,7 @@ fn imbalance(drag_velocity: &str, grains: &[[f64; 4]]) -> f64 {
     let (g0, f0) = momenta(&m);
     assert_eq!(f0, 0.0);
     let z0 = m.particles().z.clone();
-    while m.step().is_none() {}
+    while m.step_unit().is_none() {}
     let (g1, f1) = momenta(&m);
     let lost = g0 - g1;
     assert!(m.time() >= 0.05 - dt);

@@ -25,7 +25,7 @@ fn fluctuations_after_a_short_flow(drw: &str) -> (Vec<[f64; 3]>, Vec<f64>, f64) 
     let scene = Scene::from_file_with(file, &set).expect("scene");
     let cfg = Config::from_scene(&scene).expect("config");
     let mut m = Lagrangian::new(&scene, cfg).expect("solver");
-    let (ending, _) = drive(&mut m, &mut Quiet);
+    let ending = drive(&mut m, &mut Quiet).ending;
     assert_eq!(ending, Ending::EndTime);
     let nm = m.mobile();
     let d = m.material().d;

@@ -17,7 +17,7 @@ fn scene(text: &str) -> Scene {
 fn run(s: &Scene) -> (Eulerian<'_>, Ending) {
     let cfg = Config::from_scene(s).expect("config");
     let mut m = Eulerian::new(s, cfg).expect("solver");
-    let ending = drive(&mut m, &mut Quiet).0;
+    let ending = drive(&mut m, &mut Quiet).ending;
     (m, ending)
 }
 
@@ -492,7 +492,7 @@ fn reading_case01_does_not_advance_it_and_writes_finite_numbers() {
     assert_eq!(ending, Ending::Steady);
     let before = (m.phi().to_vec(), m.u_f().to_vec(), m.eddy_viscosity().to_vec(), m.steps(), m.time());
     let (d1, p1) = (m.derived(), m.particle_pressure());
-    let report = m.report(&ending, 1.0);
+    let report = m.report(&ending, &saltus_solvers::run::Clock { wall: 1.0, flow: 1.0 });
     let (d2, p2) = (m.derived(), m.particle_pressure());
     let after = (m.phi().to_vec(), m.u_f().to_vec(), m.eddy_viscosity().to_vec(), m.steps(), m.time());
     assert_eq!(before, after);

@@ -152,7 +152,7 @@ fn the_elevations_are_the_papers_set_and_fill_it() {
     assert_eq!(c.z.len(), 20);
     assert!((c.spacing - D).abs() < 1e-15 && (c.radius - 0.5 * D).abs() < 1e-15);
     assert!(c.z.iter().all(|&z| level(z).is_some()), "{:?}", c.z);
-    let many = saltus_solvers::lagrangian::setup::frey_elevations(2400, D, 3);
+    let many = saltus_solvers::lagrangian::run::setup::frey_elevations(2400, D, 3);
     let mut counts = [0usize; FREY_LEVELS];
     for &z in &many {
         counts[level(z).unwrap_or_else(|| panic!("{z} not a level"))] += 1;
@@ -172,7 +172,7 @@ fn bits_after_run(s: &Scene, threads: usize) -> Vec<u64> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
     pool.install(|| {
         let mut m = Lagrangian::new(s, Config::from_scene(s).expect("config")).expect("solver");
-        let (ending, _) = drive(&mut m, &mut Quiet);
+        let ending = drive(&mut m, &mut Quiet).ending;
         assert_eq!(ending, Ending::EndTime);
         let p = m.particles();
         let mut bits: Vec<u64> = Vec::new();
@@ -195,7 +195,7 @@ fn a_coupled_run_on_half_cylinders_is_bit_identical_on_one_and_two_threads_and_r
     // softness under a column of 30 beads is about 0.2 %)
     let m = {
         let mut m = Lagrangian::new(&s, Config::from_scene(&s).expect("config")).expect("solver");
-        let (ending, _) = drive(&mut m, &mut Quiet);
+        let ending = drive(&mut m, &mut Quiet).ending;
         assert_eq!(ending, Ending::EndTime);
         m
     };

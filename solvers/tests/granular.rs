@@ -26,7 +26,7 @@ mod common;
 use std::path::Path;
 
 use saltus_core::scene::Scene;
-use saltus_solvers::lagrangian::granular::GranularAverages;
+use saltus_solvers::lagrangian::stats::granular::GranularAverages;
 use saltus_solvers::lagrangian::{Config, Lagrangian};
 use saltus_solvers::run::{drive, Ending, Quiet, Stepper};
 
@@ -41,10 +41,10 @@ fn scene(name: &str, set: &[&str]) -> Scene {
 fn run(s: &Scene) -> (Lagrangian<'_>, GranularAverages, saltus_solvers::output::Profiles) {
     let cfg = Config::from_scene(s).expect("config");
     let mut m = Lagrangian::new(s, cfg).expect("solver");
-    let (ending, _) = drive(&mut m, &mut Quiet);
+    let ending = drive(&mut m, &mut Quiet).ending;
     assert_eq!(ending, Ending::EndTime);
     let g = m.granular_averages().expect("granular fields");
-    let profiles = m.report(&ending, 0.0).profiles;
+    let profiles = m.report(&ending, &Default::default()).profiles;
     (m, g, profiles)
 }
 
@@ -260,7 +260,7 @@ fn the_fields_are_bit_identical_on_one_and_two_threads() {
         pool.install(|| {
             let (m, g, _) = run(&s);
             assert!(
-                m.dem().list().len() > saltus_solvers::lagrangian::granular::GROUP,
+                m.dem().list().len() > saltus_solvers::lagrangian::engine::contact_sums::GROUP,
                 "{} pairs",
                 m.dem().list().len()
             );

@@ -27,7 +27,7 @@ fn run(s: &Scene) -> (Eulerian<'_>, Ending, f64) {
     let cfg = Config::from_scene(s).expect("config");
     let mut m = Eulerian::new(s, cfg).expect("solver");
     let t = Instant::now();
-    let ending = drive(&mut m, &mut Quiet).0;
+    let ending = drive(&mut m, &mut Quiet).ending;
     (m, ending, t.elapsed().as_secs_f64())
 }
 
@@ -320,7 +320,7 @@ fn packed_bed_starts_and_stays_without_turbulence() {
     assert!(cells > 50, "{cells} packed-bed cells");
     assert!(start <= 1e-9, "nu_t {start:e} m^2/s in the packed bed at start");
     let t = Instant::now();
-    let ending = drive(&mut m, &mut Quiet).0;
+    let ending = drive(&mut m, &mut Quiet).ending;
     let (end, _) = packed_bed_nu_t(&m);
     println!(
         "packed bed: {cells} cells, nu_t max {start:.2e} at start, {end:.2e} m^2/s at the end ({ending:?}, {} steps, {:.2} s)",

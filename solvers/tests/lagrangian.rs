@@ -25,7 +25,7 @@ fn model(scene: &Scene) -> Lagrangian<'_> {
 }
 
 fn run_to_end(m: &mut Lagrangian<'_>) {
-    let (ending, _) = drive(m, &mut Quiet);
+    let ending = drive(m, &mut Quiet).ending;
     assert_eq!(ending, Ending::EndTime);
 }
 
@@ -78,13 +78,13 @@ fn sliding_sphere_obeys_coulomb_and_ends_rolling() {
     m.deposit().expect("deposition");
     // sliding: v = v0 - mu g t, omega = (5/2) mu g t / R
     while m.time() < 0.5 * t_star {
-        assert!(m.step().is_none());
+        assert!(m.step_unit().is_none());
     }
     let t = m.time();
     let (v, w) = (m.particles().vx[0], m.particles().wy[0]);
     assert!(((v0 - v) / (mu * g * t) - 1.0).abs() < 0.01, "deceleration {} vs mu g = {}", (v0 - v) / t, mu * g);
     assert!((w * r / (2.5 * mu * g * t) - 1.0).abs() < 0.01, "spin {w}");
-    while m.step().is_none() {}
+    while m.step_unit().is_none() {}
     let (v, w) = (m.particles().vx[0], m.particles().wy[0]);
     assert!((v / (5.0 / 7.0 * v0) - 1.0).abs() < 0.01, "rolling speed {v} vs 5/7 v0");
     assert!((w * r / v - 1.0).abs() < 0.01, "rolling without slip: omega R = {} vs v = {v}", w * r);
@@ -103,7 +103,7 @@ fn elastic_frictionless_gas_conserves_energy() {
     let energy = |m: &Lagrangian<'_>| m.particles().translational_energy() + m.dem().normal_spring_energy();
     let e0 = energy(&m);
     let mut worst: f64 = 0.0;
-    while m.step().is_none() {
+    while m.step_unit().is_none() {
         worst = worst.max((energy(&m) / e0 - 1.0).abs());
     }
     assert!(m.dem().list().builds > 1);
@@ -147,7 +147,7 @@ fn homogeneous_cooling_follows_haff_with_the_kinetic_theory_rate() {
     // (3/2) phi dT/dt = -F4 T^{3/2} / d  =>  tau = 3 phi d / (F4 sqrt(T0))
     let tau = 3.0 * phi * d / (f4 * t0.sqrt());
     let mut samples = vec![(0.0, t0)];
-    while m.step().is_none() {
+    while m.step_unit().is_none() {
         samples.push((m.time(), m.particles().temperature()));
     }
     assert!(m.time() > 3.9 * tau, "run too short: {} s vs tau = {tau} s", m.time());
@@ -211,7 +211,7 @@ fn coupled_run_is_bit_identical_on_one_and_two_threads() {
     let (one, n) = state_in_pool(&s, 1);
     let (two, _) = state_in_pool(&s, 2);
     // several parallel work items, for the particles and for the pairs
-    assert!(n > 2 * saltus_solvers::lagrangian::dem::CHUNK, "{n} mobile particles");
+    assert!(n > 2 * saltus_solvers::lagrangian::engine::chunks::CHUNK, "{n} mobile particles");
     assert_eq!(one.len(), two.len());
     let differing = one.iter().zip(&two).filter(|(a, b)| a != b).count();
     assert_eq!(differing, 0, "{differing} of {} values differ between 1 and 2 threads", one.len());
@@ -224,14 +224,14 @@ fn coupled_run_is_bit_identical_on_one_and_two_threads() {
 #[test]
 fn coupled_run_keeps_its_particles_and_dephases_the_eddies() {
     // (the momentum transfer of beta, Maurin eq 18, is the property test
-    // lagrangian::averaging::tests::the_fluid_at_the_velocity_the_grains_saw_loses_exactly_their_drag,
+    // lagrangian::coupling::averaging::tests::the_fluid_at_the_velocity_the_grains_saw_loses_exactly_their_drag,
     // and the run-level balance is tests/coupling.rs)
     let s = small_bed(&[]);
     let mut m = model(&s);
     m.deposit().expect("deposition");
     let n0 = m.particles().len();
     for _ in 0..5 {
-        assert!(m.step().is_none());
+        assert!(m.step_unit().is_none());
     }
     assert_eq!(m.particles().len(), n0);
     let p = m.particles();
@@ -331,14 +331,14 @@ fn the_deposition_is_a_phase_of_the_run_bounded_by_max_steps() {
         phases.push((p.phase, p.steps));
         saltus_solvers::run::Control::Continue
     };
-    let (ending, _) = drive(&mut m, &mut watch);
+    let ending = drive(&mut m, &mut watch).ending;
     assert_eq!(ending, Ending::MaxSteps);
     assert_eq!((m.settle_steps(), m.steps()), (50, 0));
     // the observer saw the deposition advance, period by period, up to the cap
     assert!(phases.len() > 1 && phases.iter().all(|(p, _)| *p == Phase::Setup), "{phases:?}");
     assert_eq!(phases.last(), Some(&(Phase::Setup, 50)));
     // nothing was averaged: the report has no transport figures rather than zeros
-    let r = m.report(&ending, 0.0);
+    let r = m.report(&ending, &Default::default());
     assert_eq!((r.summary.qs, r.summary.qs_star, r.summary.shields, r.summary.bed_height), (None, None, None, None));
     assert_eq!(r.profiles.columns.len(), 1, "z only");
 }
@@ -369,7 +369,7 @@ fn k_omega_column_feeds_the_eddy_interaction_model() {
     let mut m = model(&s);
     m.deposit().expect("deposition");
     while m.time() < 0.1 {
-        if let Some(end) = m.step() {
+        if let Some(end) = m.step_unit() {
             panic!("ended before 0.1 s: {end:?}");
         }
     }
@@ -442,7 +442,7 @@ fn a_short_dem_run_reports_its_samples_and_all_its_steps_and_no_unfounded_standa
             taken += 1;
         }
     }
-    let r = m.report(&Ending::EndTime, 1.0);
+    let r = m.report(&Ending::EndTime, &saltus_solvers::run::Clock { wall: 1.0, flow: 1.0 });
     let sum = &r.summary;
     assert!(taken > 250, "{taken} samples");
     assert_eq!(sum.samples, Some(taken));

@@ -25,7 +25,7 @@ fn after(scene: &Scene, t: f64) -> (f64, f64) {
     let mut m = Lagrangian::new(scene, Config::from_scene(scene).expect("config")).expect("solver");
     m.deposit().expect("deposition");
     while m.time() < t {
-        assert!(m.step().is_none());
+        assert!(m.step_unit().is_none());
     }
     (m.particles().vx[0], m.particles().wy[0])
 }

@@ -22,7 +22,7 @@ fn load(rel: &str, set: &[&str]) -> Scene {
 fn run(s: &Scene) -> (Eulerian<'_>, Ending) {
     let cfg = Config::from_scene(s).expect("config");
     let mut m = Eulerian::new(s, cfg).expect("solver");
-    let ending = drive(&mut m, &mut Quiet).0;
+    let ending = drive(&mut m, &mut Quiet).ending;
     (m, ending)
 }
 
@@ -62,7 +62,7 @@ fn rouse_profile_under_a_parabolic_eddy_viscosity() {
     let worst = worst_deviation(&m, 10, 0.9 * H, |z| ((H - z) / z).powf(p));
     assert!(worst < 5e-3, "Rouse profile off by {worst:e}");
     assert!(m.mass_error() < 1e-12, "mass error {:e}", m.mass_error());
-    let ro = m.report(&ending, 0.0).summary.rouse_number.expect("rouse number");
+    let ro = m.report(&ending, &Default::default()).summary.rouse_number.expect("rouse number");
     assert!((ro / p - 1.0).abs() < 5e-3, "fitted Rouse number {ro} against P = {p}");
 }
 
@@ -87,7 +87,7 @@ fn rouse_number(rel: &str, set: &[&str]) -> f64 {
     let (m, ending) = run(&s);
     assert_eq!(ending, Ending::Steady, "{rel} {set:?}");
     assert!(m.mass_error() < 1e-12, "{rel}: mass error {:e}", m.mass_error());
-    m.report(&ending, 0.0).summary.rouse_number.expect("rouse number")
+    m.report(&ending, &Default::default()).summary.rouse_number.expect("rouse number")
 }
 
 /// Cheng et al. section 3.1, NS1 of Muste et al. 2005 (table 2): k-omega channel with the
@@ -150,10 +150,10 @@ fn dilute_settling_reaches_the_terminal_velocity_of_the_drag_law() {
     let j = m.len() / 2;
     let mut last = 0.0;
     for _ in 0..12 {
-        assert!(m.step().is_none());
+        assert!(m.step_unit().is_none());
         last = m.flux()[j] / m.phi()[j];
     }
-    assert!(m.step().is_none());
+    assert!(m.step_unit().is_none());
     let w = m.flux()[j] / m.phi()[j];
     assert!((w / expected - 1.0).abs() < 1e-9, "settling velocity {w} m/s against {expected} m/s");
     assert!((w / last - 1.0).abs() < 1e-9, "successive settling velocities {last} and {w} m/s");
@@ -208,7 +208,7 @@ fn terminal_velocity(s: &Scene) -> f64 {
 /// sub-steps a cell.
 fn grains_in_the_rouse_range(rel: &str) -> f64 {
     use saltus_core::{FlowScales, TurbulencePoint};
-    use saltus_solvers::lagrangian::drag::FluidField;
+    use saltus_solvers::lagrangian::coupling::drag::FluidField;
     let s = load(rel, &[]);
     let (m, ending) = run(&s);
     assert_eq!(ending, Ending::Steady, "{rel}");

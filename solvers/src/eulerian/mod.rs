@@ -107,3 +107,17 @@ pub use config::{Config, Domain, Settings, Top};
 pub use report::Derived;
 pub use rheology::{Elastic, Rheology};
 pub use solver::{Eulerian, PHI_FLOOR};
+
+/// The stages of a step whose wall time the solver counts: the coefficients of the state
+/// (closures, drag, stresses), the streamwise momentum of both phases, the granular
+/// temperature (kinetic) or the local pressure, k and omega, the volume fraction.
+pub const STAGES: [&str; 5] = ["coefficients", "momentum", "granular", "turbulence", "volume_fraction"];
+
+/// Indices into [`STAGES`].
+mod stage {
+    pub(super) const COEFFICIENTS: usize = 0;
+    pub(super) const MOMENTUM: usize = 1;
+    pub(super) const GRANULAR: usize = 2;
+    pub(super) const TURBULENCE: usize = 3;
+    pub(super) const VOLUME_FRACTION: usize = 4;
+}

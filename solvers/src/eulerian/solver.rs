@@ -74,6 +74,8 @@ pub struct Eulerian<'a> {
     pub(super) co: Coefficients,
     pub(super) sc: Scratch,
     pub(super) stepping: Stepping,
+    /// wall time of the stages of the steps ([`super::STAGES`])
+    pub(super) stages: crate::run::Stages,
     /// form of the drift flux of the fluctuation closure (gradient without one)
     pub(super) drift_form: DriftForm,
     /// volume fraction above which the wall-normal slip enters the drag: 1e-6 without a
@@ -222,6 +224,7 @@ impl<'a> Eulerian<'a> {
             k_omega_physics,
             s,
             saved: Saved::default(),
+            stages: crate::run::Stages::new(&super::STAGES),
             co: Coefficients::new(n),
             sc: Scratch::new(n),
             stepping,

@@ -9,8 +9,10 @@
 //! for the new state, so that the getters and the report read them without advancing
 //! anything, and the next step starts from them.
 
-use super::Eulerian;
-use crate::run::{Breakdown, Ending, Phase, Progress, Sample, Stepper};
+use std::time::Instant;
+
+use super::{stage, Eulerian};
+use crate::run::{Breakdown, Clock, Ending, Limits, Phase, Progress, Sample, Stepper};
 use crate::RunReport;
 
 impl Eulerian<'_> {
@@ -18,29 +20,35 @@ impl Eulerian<'_> {
     /// momentum, then the temperature (kinetic) or the pressure at the new shear rate
     /// (local), k and omega, and the volume fraction.
     fn attempt(&mut self, dt: f64) -> Result<(), Breakdown> {
+        let t = Instant::now();
         self.s.save(&mut self.saved);
         self.solve_momentum(dt)?;
+        let t = self.stages.lap(stage::MOMENTUM, t);
         if self.kinetic {
             self.solve_temperature(dt)?;
         } else {
             self.update_local_pressure();
         }
+        let t = self.stages.lap(stage::GRANULAR, t);
         self.solve_two_equation(dt)?;
-        self.solve_phi(dt)
+        let t = self.stages.lap(stage::TURBULENCE, t);
+        let r = self.solve_phi(dt);
+        self.stages.lap(stage::VOLUME_FRACTION, t);
+        r
     }
 
-    /// The run's own ending at the current state, if any.
+    /// The coefficients of the current state, timed.
+    fn coefficients(&mut self) -> Result<(), Breakdown> {
+        let t = Instant::now();
+        let r = self.evaluate();
+        self.stages.lap(stage::COEFFICIENTS, t);
+        r
+    }
+
+    /// The run's own ending at the current state, if any: the steady state (the driver
+    /// applies the end time and the step cap).
     fn ending(&self) -> Option<Ending> {
-        let s = &self.cfg.settings;
-        if self.stepping.calm >= s.steady_steps {
-            Some(Ending::Steady)
-        } else if self.s.time >= s.end_time * (1.0 - 1e-12) {
-            Some(Ending::EndTime)
-        } else if self.s.steps >= s.max_steps {
-            Some(Ending::MaxSteps)
-        } else {
-            None
-        }
+        (self.stepping.calm >= self.cfg.settings.steady_steps).then_some(Ending::Steady)
     }
 }
 
@@ -49,13 +57,19 @@ impl Stepper for Eulerian<'_> {
         "eulerian"
     }
 
-    fn step(&mut self) -> Option<Ending> {
+    fn limits(&self) -> Limits {
+        let s = &self.cfg.settings;
+        // the last step is cut to end at end_time, which it meets within rounding
+        Limits { end_time: s.end_time, end_tolerance: 1e-12, max_steps: s.max_steps as u64, wall: None }
+    }
+
+    fn step(&mut self, limits: &Limits) -> Option<Ending> {
         if let Some(e) = self.ending() {
             return Some(e);
         }
         let s = &self.cfg.settings;
         let (dt_max, dt_min, end_time, tol, max_change) =
-            (s.dt_max, s.dt_min, s.end_time, s.steady_tolerance, s.max_phi_change);
+            (s.dt_max, s.dt_min, limits.end_time, s.steady_tolerance, s.max_phi_change);
         loop {
             let dt = self.stepping.dt;
             let step = dt.min(end_time - self.s.time);
@@ -67,7 +81,7 @@ impl Stepper for Eulerian<'_> {
                     self.s.residual = rate;
                     self.stepping.calm = if rate < tol { self.stepping.calm + 1 } else { 0 };
                     self.stepping.dt = (dt * grow).min(dt_max);
-                    if let Err(b) = self.evaluate() {
+                    if let Err(b) = self.coefficients() {
                         return Some(Ending::Unstable(b));
                     }
                     return self.ending();
@@ -78,10 +92,10 @@ impl Stepper for Eulerian<'_> {
                     self.stepping.dt = dt * 0.3;
                     if self.stepping.dt < dt_min {
                         // the coefficients of the restored state, for the report
-                        let _ = self.evaluate();
+                        let _ = self.coefficients();
                         return Some(Ending::Unstable(b));
                     }
-                    if let Err(b) = self.evaluate() {
+                    if let Err(b) = self.coefficients() {
                         return Some(Ending::Unstable(b));
                     }
                 }
@@ -95,13 +109,18 @@ impl Stepper for Eulerian<'_> {
             time: self.s.time,
             end_time: self.cfg.settings.end_time,
             steps: self.s.steps as u64,
+            total_steps: self.s.steps as u64,
             dt: self.stepping.dt,
             residual: self.s.residual.is_finite().then_some(self.s.residual),
         }
     }
 
-    fn report(&self, ending: &Ending, wall: f64) -> RunReport {
-        self.run_report(ending, wall)
+    fn report(&self, ending: &Ending, clock: &Clock) -> RunReport {
+        self.run_report(ending, clock.wall)
+    }
+
+    fn stages(&self) -> Vec<(&'static str, f64)> {
+        self.stages.iter().collect()
     }
 
     fn sample(&self) -> Sample {

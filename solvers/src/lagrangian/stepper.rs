@@ -1,85 +1,45 @@
 //! The Lagrangian solver as the driver sees it: one unit of work is one fluid period of
 //! DEM steps, first of the deposition ([`Phase::Setup`]), then of the flow
-//! ([`Phase::Flow`]), each in the pool of `solver.lagrangian.threads`.
+//! ([`Phase::Flow`]), each in the pool of `solver.lagrangian.threads`. It joins the run
+//! ([`super::run`]) and its outputs ([`super::output`]).
 
-use std::path::Path;
-use std::time::Instant;
-
-use saltus_core::Error;
-
-use super::config::FluidMode;
-use super::solver::{Lagrangian, Stage};
+use super::output::{checkpoint, report, vtk};
+use super::run::config::FluidMode;
+use super::run::solver::Lagrangian;
+use super::run::state::Stage;
+use super::run::workspace::within;
 use crate::output::{self, finite};
-use crate::run::{Ending, Phase, Progress, Sample, Stepper};
+use crate::run::{Clock, Ending, Limits, Phase, Progress, Sample, Stepper};
 use crate::RunReport;
-
-/// Run `f` in `pool` (the caller's pool when `None`).
-pub fn within<R: Send>(pool: Option<&rayon::ThreadPool>, f: impl FnOnce() -> R + Send) -> R {
-    match pool {
-        Some(p) => p.install(f),
-        None => f(),
-    }
-}
-
-/// A pool of `threads` threads, or `None` for the caller's (rayon's default: all cores).
-pub fn pool(threads: usize, file: &Path) -> Result<Option<rayon::ThreadPool>, Error> {
-    if threads == 0 {
-        return Ok(None);
-    }
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map(Some)
-        .map_err(|e| Error::Invalid(format!("{}: solver.lagrangian.threads = {threads}: {e}", file.display())))
-}
-
-impl Lagrangian<'_> {
-    /// Run the deposition to its end (nothing to do without one). `Err` with the ending
-    /// when the run ended during it (step cap, breakdown).
-    pub fn deposit(&mut self) -> Result<(), Ending> {
-        while self.stage == Stage::Deposition {
-            if let Some(e) = self.step() {
-                return Err(e);
-            }
-        }
-        Ok(())
-    }
-
-    /// One fluid period of the current phase, timing the flow for the throughput.
-    fn unit_of_work(&mut self) -> Option<Ending> {
-        match self.stage {
-            Stage::Deposition => self.deposit_period(),
-            Stage::Flow => {
-                let started = *self.flow_started.get_or_insert_with(Instant::now);
-                let ending = self.advance();
-                self.flow_wall = self.flow_wall_before + started.elapsed().as_secs_f64();
-                ending
-            }
-        }
-    }
-}
 
 impl Stepper for Lagrangian<'_> {
     fn name(&self) -> &'static str {
         "lagrangian"
     }
 
-    fn step(&mut self) -> Option<Ending> {
+    fn limits(&self) -> Limits {
+        let n = &self.config().settings.numerics;
+        Limits { end_time: n.end_time, end_tolerance: 0.0, max_steps: n.max_steps, wall: None }
+    }
+
+    fn step(&mut self, limits: &Limits) -> Option<Ending> {
         // the pool is taken out for the call, so that the work can borrow the solver
-        let pool = self.pool.take();
-        let ending = within(pool.as_ref(), || self.unit_of_work());
-        self.pool = pool;
+        let pool = self.work.pool.take();
+        let ending = within(pool.as_ref(), || self.unit_of_work(limits));
+        self.work.pool = pool;
         ending
     }
 
     fn progress(&self) -> Progress {
         let dt = self.dt();
-        match self.stage {
+        let total_steps = self.settle_steps() + self.steps();
+        match self.state.stage {
             Stage::Deposition => Progress {
                 phase: Phase::Setup,
-                time: self.settle_steps as f64 * dt,
-                end_time: self.settle_total as f64 * dt,
-                steps: self.settle_steps,
+                time: self.settle_steps() as f64 * dt,
+                end_time: self.params.settle_total as f64 * dt,
+                steps: self.settle_steps(),
+                total_steps,
                 dt,
                 residual: None,
             },
@@ -88,18 +48,33 @@ impl Stepper for Lagrangian<'_> {
                 time: self.time(),
                 end_time: self.config().settings.numerics.end_time,
                 steps: self.steps(),
+                total_steps,
                 dt,
                 residual: self.steady().change(),
             },
         }
     }
 
-    fn report(&self, ending: &Ending, wall: f64) -> RunReport {
-        super::report::report(self, ending, wall)
+    fn report(&self, ending: &Ending, clock: &Clock) -> RunReport {
+        report::report(self, ending, clock)
     }
 
-    fn set_output_dir(&mut self, dir: &Path) {
-        self.set_vtk_dir(&dir.join("vtk"));
+    fn stages(&self) -> Vec<(&'static str, f64)> {
+        self.dem().stages().iter().chain(self.work.stages.iter()).collect()
+    }
+
+    fn paraview_period(&self) -> f64 {
+        self.config().settings.numerics.vtk_period
+    }
+
+    /// The particles, and the column the particles see when there is fluid.
+    fn paraview(&self) -> Result<Vec<(&'static str, String)>, String> {
+        let refuse = |what: &str, array: String| format!("{what} array `{array}` holds a non-finite value");
+        let mut docs = vec![("particles", vtk::particles_vtp(self.particles()).map_err(|a| refuse("particle", a))?)];
+        if self.config().settings.numerics.fluid != FluidMode::Off {
+            docs.push(("column", vtk::column_vtp(&self.state.field).map_err(|a| refuse("column", a))?));
+        }
+        Ok(docs)
     }
 
     /// The transport of the last fluid update (the particle sums it averaged), the largest
@@ -116,7 +91,7 @@ impl Stepper for Lagrangian<'_> {
         let mat = self.material();
         let scales = output::TransportScales::new(self.scene(), mat.rho_p, mat.d, self.config().domain.water_depth);
         let dz = self.dz();
-        let flux = &self.sums.v[0];
+        let flux = &self.state.sums.v[0];
         // sum over the slices of V v_x, over the bed area: the transport per unit width
         let qs = flux.iter().sum::<f64>() / (self.cell_volume() / dz);
         s.qs = finite(qs);
@@ -131,11 +106,13 @@ impl Stepper for Lagrangian<'_> {
     }
 
     fn save(&self, out: &mut Vec<u8>) -> Result<(), String> {
-        self.save_state(out)
+        checkpoint::save(&self.state, out)
     }
 
-    fn restore(&mut self, state: &[u8]) -> Result<(), String> {
-        self.restore_state(state)
+    fn restore(&mut self, bytes: &[u8]) -> Result<(), String> {
+        let s = checkpoint::load(bytes, self.dt(), self.state.column.is_some(), self.state.granular.is_some())?;
+        self.adopt(s);
+        Ok(())
     }
 
     fn restartable(&self) -> bool {

@@ -35,8 +35,10 @@ pub const FILE: &str = "checkpoint.bin";
 const MAGIC: &[u8; 8] = b"SALTUSCP";
 /// Layout version of the file and of every saved state (2: the DEM's statistics carry
 /// the blocking of qs and the temperature history; 3: the DEM carries the half-cylinder
-/// bottom, its histories and the walls' own law, and the contact law its normal force).
-pub const VERSION: u32 = 3;
+/// bottom, its histories and the walls' own law, and the contact law its normal force;
+/// 4: the DEM state is the solver's `State` as one struct, the ParaView series and the
+/// driver's clock travel with the cadences).
+pub const VERSION: u32 = 4;
 
 /// What a checkpoint holds besides its framing.
 #[derive(Serialize, Deserialize)]
@@ -90,7 +92,7 @@ pub fn write(dir: &Path, solver: &str, scene: &str, cadence: &Cadence, state: &[
         program: program(),
         solver: solver.to_string(),
         scene: scene.to_string(),
-        cadence: *cadence,
+        cadence: cadence.clone(),
         state: state.to_vec(),
     };
     let body = options()
@@ -240,7 +242,7 @@ mod tests {
         write(&dir, "lagrangian", "seed = 3\n", &cadence, &state).unwrap();
         let r = read(&dir).unwrap();
         assert_eq!(
-            (r.solver.as_str(), r.scene.as_str(), r.cadence, r.state),
+            (r.solver.as_str(), r.scene.as_str(), r.cadence.clone(), r.state),
             ("lagrangian", "seed = 3\n", cadence, state)
         );
         let file = dir.join(FILE);

@@ -1,6 +1,7 @@
-//! What a run writes while it runs, for both solvers, from the driver: the time series
-//! (`timeseries.csv`), the profile snapshots (`snapshots/`) and the checkpoints
-//! (`checkpoint.bin`, see [`super::checkpoint`]).
+//! What a run writes while it runs, for both solvers, as one observer of the driver
+//! ([`Recorder`]): the time series (`timeseries.csv`), the profile snapshots
+//! (`snapshots/`), the ParaView snapshots (`vtk/`, see [`super::paraview`]) and the
+//! checkpoints (`checkpoint.bin`, see [`super::checkpoint`]).
 //!
 //! Cadences are in simulated seconds of the flow (`output.timeseries_interval`,
 //! `output.snapshot_interval`) or of the current phase (`output.checkpoint_interval`:
@@ -23,7 +24,8 @@ use saltus_core::Error;
 use serde::{Deserialize, Serialize};
 
 use super::checkpoint::{self, Restart};
-use super::{Ending, Phase, Sample, Stepper};
+use super::paraview::{self, Series};
+use super::{Clock, Control, Ending, Observer, Phase, Progress, Sample, Stepper};
 
 /// File name of the time series.
 pub const TIMESERIES: &str = "timeseries.csv";
@@ -38,7 +40,7 @@ pub const SNAPSHOT_HEADER: &str = "index,t,steps,file";
 
 /// Where the cadences are: part of a checkpoint, so that a restarted run writes the rows
 /// and snapshots the uninterrupted run would have.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Cadence {
     /// phase of the last unit of work seen, `None` before the first
     pub phase: Option<Phase>,
@@ -55,6 +57,10 @@ pub struct Cadence {
     pub next_snapshot: f64,
     /// time of the current phase at which the next checkpoint is due (s)
     pub next_checkpoint: f64,
+    /// the ParaView snapshots written and the time of the next
+    pub paraview: Series,
+    /// the driver's clock at the checkpoint (its flow time carries over a restart)
+    pub clock: Clock,
 }
 
 /// The next multiple of `interval` strictly above `t` (a row is due there).
@@ -81,6 +87,9 @@ pub struct Recorder {
     interval: f64,
     snapshot_interval: f64,
     checkpoint_interval: f64,
+    paraview_period: f64,
+    /// why the first ParaView snapshot that failed was not written
+    paraview_error: Option<String>,
     cadence: Cadence,
     /// resolved scene text, stored in each checkpoint
     scene: String,
@@ -108,7 +117,9 @@ impl Recorder {
             interval: out.timeseries_interval.unwrap_or(end_time / saltus_core::scene::TIMESERIES_ROWS),
             snapshot_interval: out.snapshot_interval,
             checkpoint_interval: out.checkpoint_interval,
-            cadence: restart.map_or_else(Cadence::default, |r| r.cadence),
+            paraview_period: stepper.paraview_period(),
+            paraview_error: None,
+            cadence: restart.map_or_else(Cadence::default, |r| r.cadence.clone()),
             scene: scene.to_toml()?,
             restartable: stepper.restartable(),
             line: String::with_capacity(256),
@@ -142,8 +153,18 @@ impl Recorder {
     }
 
     /// Where the cadences are.
-    pub fn cadence(&self) -> Cadence {
-        self.cadence
+    pub fn cadence(&self) -> &Cadence {
+        &self.cadence
+    }
+
+    /// The driver's clock the run continues from (a restart's).
+    pub fn resumed_clock(&self) -> Clock {
+        self.cadence.clock
+    }
+
+    /// Why a ParaView snapshot was not written (the first failure), if one was not.
+    pub fn paraview_error(&self) -> Option<&str> {
+        self.paraview_error.as_deref()
     }
 
     /// Checkpoints written so far.
@@ -159,11 +180,12 @@ impl Recorder {
         if phase == Phase::Flow {
             c.next_sample = 0.0;
             c.next_snapshot = self.snapshot_interval;
+            c.paraview.next = 0.0;
         }
     }
 
-    /// After a unit of work: a row, a snapshot, a checkpoint when due.
-    pub fn after_unit(&mut self, stepper: &dyn Stepper) {
+    /// After a unit of work: a row, a snapshot, a ParaView snapshot, a checkpoint when due.
+    pub fn after_unit(&mut self, stepper: &dyn Stepper, clock: &Clock) {
         let p = stepper.progress();
         if self.cadence.phase != Some(p.phase) {
             self.enter(p.phase);
@@ -174,9 +196,16 @@ impl Recorder {
                 self.snapshot(stepper, p.time, p.steps);
                 self.cadence.next_snapshot = next_multiple(p.time, self.snapshot_interval);
             }
+            if self.paraview_period > 0.0 && p.time >= self.cadence.paraview.next {
+                let dir = paraview::folder(&self.dir);
+                if let Err(e) = self.cadence.paraview.write(&dir, p.time, self.paraview_period, stepper.paraview()) {
+                    // a failed snapshot does not stop the run (the report tells it)
+                    self.paraview_error.get_or_insert_with(|| e.to_string());
+                }
+            }
         }
         if self.restartable && self.checkpoint_interval > 0.0 && p.time >= self.cadence.next_checkpoint {
-            self.checkpoint(stepper);
+            self.checkpoint(stepper, clock);
             self.cadence.next_checkpoint = next_multiple(p.time, self.checkpoint_interval);
         }
     }
@@ -190,9 +219,9 @@ impl Recorder {
 
     /// At the ending: a checkpoint of the state (unless it went bad: the last periodic
     /// checkpoint stays), then the last state as a row of the time series.
-    pub fn at_end(&mut self, stepper: &dyn Stepper, ending: &Ending) {
+    pub fn at_end(&mut self, stepper: &dyn Stepper, ending: &Ending, clock: &Clock) {
         if self.restartable && !matches!(ending, Ending::Unstable(_)) {
-            self.checkpoint(stepper);
+            self.checkpoint(stepper, clock);
         }
         if stepper.progress().phase == Phase::Flow {
             let s = stepper.sample();
@@ -257,7 +286,8 @@ impl Recorder {
         }
     }
 
-    fn checkpoint(&mut self, stepper: &dyn Stepper) {
+    fn checkpoint(&mut self, stepper: &dyn Stepper, clock: &Clock) {
+        self.cadence.clock = *clock;
         let mut state = Vec::new();
         let written = stepper
             .save(&mut state)
@@ -267,6 +297,17 @@ impl Recorder {
             Ok(()) => self.checkpoints += 1,
             Err(e) => self.fail(e),
         }
+    }
+}
+
+impl Observer for Recorder {
+    fn step(&mut self, stepper: &dyn Stepper, _: &Progress, clock: &Clock) -> Control {
+        self.after_unit(stepper, clock);
+        Control::Continue
+    }
+
+    fn finish(&mut self, stepper: &dyn Stepper, ending: &Ending, clock: &Clock) {
+        self.at_end(stepper, ending, clock);
     }
 }
 

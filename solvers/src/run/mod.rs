@@ -3,19 +3,27 @@
 //! A solver is a [`Stepper`]: it owns its state and knows how to advance it by one unit
 //! of work (an accepted time step of the Eulerian column; the DEM steps up to the next
 //! fluid update of the Lagrangian solver), how far it is ([`Progress`]) and what it has
-//! to report ([`crate::RunReport`]). The driver ([`drive`]) owns the loop, the wall
-//! clock and the observer, in the spirit of argmin's `Executor`: it stops the run on the
-//! solver's own ending, on a breakdown or when the observer asks, and always leaves the
-//! last state in the stepper so that the caller can report it. Every run ends with one
-//! [`Ending`]; a breakdown is one [`Breakdown`] whichever solver met it.
+//! to report ([`crate::RunReport`]). The driver ([`drive`]) owns what every solver
+//! shares, in the spirit of argmin's `Executor`: the loop; the generic stops (end time,
+//! step cap, wall clock: [`Limits`], read from [`Progress`] after every unit, the solver
+//! only never stepping past them); the wall clock ([`Clock`]); the observers, with their
+//! start, step and final hooks ([`Observer`]: the time series, snapshots, checkpoints and
+//! ParaView output of [`history`], the caller's progress display and interrupt); and the
+//! per-stage timing ([`timing`]). The solver ends a run only for what is its own (a
+//! steady state, a breakdown). Every run ends with one [`Ending`]; a breakdown is one
+//! [`Breakdown`] whichever solver met it; the last state always stays in the stepper so
+//! that the caller can report it.
 
 pub mod checkpoint;
 pub mod history;
+pub mod paraview;
+pub mod timing;
 
 use std::borrow::Cow;
 use std::fmt;
-use std::path::Path;
 use std::time::Instant;
+
+pub use timing::{Stages, Timing};
 
 use saltus_core::param::{decimal, number};
 use serde::{Deserialize, Serialize};
@@ -96,6 +104,9 @@ pub enum Ending {
     MaxSteps,
     /// the observer asked to stop (Ctrl-C, a caller's budget)
     Interrupted,
+    /// the wall-clock limit of the run is reached (the state is written, with a
+    /// checkpoint where the solver has them)
+    WallClock,
     /// the state went bad; the stepper holds the last good state
     Unstable(Breakdown),
 }
@@ -108,6 +119,7 @@ impl Ending {
             Ending::EndTime => "end_time",
             Ending::MaxSteps => "max_steps",
             Ending::Interrupted => "interrupted",
+            Ending::WallClock => "wall_clock",
             Ending::Unstable(_) => "unstable",
         }
     }
@@ -118,7 +130,7 @@ impl Ending {
         match self {
             Ending::Unstable(b) => Some(b.to_string()),
             Ending::Interrupted => Some("interrupted before its end".into()),
-            Ending::Steady | Ending::EndTime | Ending::MaxSteps => None,
+            Ending::Steady | Ending::EndTime | Ending::MaxSteps | Ending::WallClock => None,
         }
     }
 
@@ -150,8 +162,10 @@ pub struct Progress {
     pub time: f64,
     /// end time of the phase (s)
     pub end_time: f64,
-    /// steps taken
+    /// steps taken in the phase
     pub steps: u64,
+    /// steps counted against the step cap (the DEM's deposition and flow together)
+    pub total_steps: u64,
     /// current time step (s)
     pub dt: f64,
     /// steady-state residual in the solver's own measure (1/s for the Eulerian rates, a
@@ -184,6 +198,44 @@ pub struct Sample {
     pub theta_g: Option<f64>,
 }
 
+/// The generic stops of a run, applied by the driver after every unit of work; a solver
+/// never steps past them within a unit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Limits {
+    /// end of the flow (s)
+    pub end_time: f64,
+    /// relative rounding within which a flow time counts as the end time: the Eulerian
+    /// column cuts its last step to end at `end_time` within rounding; the DEM's time is a
+    /// whole number of steps, its end exact (0)
+    pub end_tolerance: f64,
+    /// most steps ([`Progress::total_steps`])
+    pub max_steps: u64,
+    /// most wall-clock seconds of the run in this process, `None` for no limit
+    pub wall: Option<f64>,
+}
+
+impl Limits {
+    /// The stop `p` has reached, if any: the end time (flow phase only), then the step cap.
+    pub fn reached(&self, p: &Progress) -> Option<Ending> {
+        if p.phase == Phase::Flow && p.time >= self.end_time * (1.0 - self.end_tolerance) {
+            Some(Ending::EndTime)
+        } else if p.total_steps >= self.max_steps {
+            Some(Ending::MaxSteps)
+        } else {
+            None
+        }
+    }
+}
+
+/// The driver's wall clock.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Clock {
+    /// wall time of the run in this process (s)
+    pub wall: f64,
+    /// wall time of the flow phase, over restarts (s): the throughput's denominator
+    pub flow: f64,
+}
+
 /// What the observer tells the driver.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Control {
@@ -198,23 +250,32 @@ pub trait Stepper {
     /// Solver name, as in `[solver] type`.
     fn name(&self) -> &'static str;
 
-    /// Advance by one unit of work. `None` while the run goes on; the ending when the
-    /// solver's own criteria end it (steady, end time, step cap) or when the state went
-    /// bad (the stepper then holds the last good state).
-    fn step(&mut self) -> Option<Ending>;
+    /// The scene's end time and step cap (the driver adds the wall clock).
+    fn limits(&self) -> Limits;
+
+    /// Advance by one unit of work, never past `limits`. `None` while the run goes on
+    /// (the driver then reads the stops from [`Stepper::progress`]); the ending when the
+    /// solver's own criteria end it (steady) or when the state went bad (the stepper then
+    /// holds the last good state).
+    fn step(&mut self, limits: &Limits) -> Option<Ending>;
 
     /// Where the run is.
     fn progress(&self) -> Progress;
 
-    /// Profiles, summary and paragraph of the state as it is now, for a run that ended
-    /// with `ending` after `wall` seconds of wall-clock time.
-    fn report(&self, ending: &Ending, wall: f64) -> RunReport;
+    /// One unit of work with the scene's limits, ending where the driver would (the end
+    /// time or the step cap reached, before or by this unit): for callers that step a
+    /// solver by hand.
+    fn step_unit(&mut self) -> Option<Ending> {
+        let limits = self.limits();
+        if let Some(e) = limits.reached(&self.progress()) {
+            return Some(e);
+        }
+        self.step(&limits).or_else(|| limits.reached(&self.progress()))
+    }
 
-    /// Where the run's outputs go, for a solver that writes some during the run (the
-    /// DEM's VTK snapshots); told once before the first step. An extension of the
-    /// argmin-like loop: the solver's own files belong to the solver, their folder to
-    /// the caller.
-    fn set_output_dir(&mut self, _dir: &Path) {}
+    /// Profiles, summary and paragraph of the state as it is now, for a run that ended
+    /// with `ending` with the driver's clock at `clock`.
+    fn report(&self, ending: &Ending, clock: &Clock) -> RunReport;
 
     /// The state as a row of the time series (flow phase only: the driver samples
     /// nothing during set-up work).
@@ -223,7 +284,23 @@ pub trait Stepper {
     /// Profiles of the state as it is now, the ones [`Stepper::report`] writes: the
     /// driver's profile snapshots.
     fn profiles(&self) -> Profiles {
-        self.report(&Ending::EndTime, 0.0).profiles
+        self.report(&Ending::EndTime, &Clock::default()).profiles
+    }
+
+    /// Wall time (s) of each stage of the solver's steps so far, in this process.
+    fn stages(&self) -> Vec<(&'static str, f64)> {
+        Vec::new()
+    }
+
+    /// Flow time between two ParaView snapshots (s), 0 for none.
+    fn paraview_period(&self) -> f64 {
+        0.0
+    }
+
+    /// The ParaView documents of the state as it is now, (name, VTK XML text) each, or why
+    /// they cannot be written (a non-finite value).
+    fn paraview(&self) -> Result<Vec<(&'static str, String)>, String> {
+        Ok(Vec::new())
     }
 
     /// Append to `out` everything a continuation needs to go on bit for bit from the state
@@ -243,15 +320,29 @@ pub trait Stepper {
     }
 }
 
-/// Something that watches a run.
+/// Something that watches a run: told when it starts, after every unit of work (where it
+/// may stop the run) and at its ending, each time with the stepper, its progress and the
+/// driver's clock.
 pub trait Observer {
-    /// Called after every unit of work.
-    fn observe(&mut self, progress: &Progress) -> Control;
+    /// Before the first unit of work.
+    fn start(&mut self, _stepper: &dyn Stepper, _clock: &Clock) {}
+
+    /// After every unit of work.
+    fn step(&mut self, stepper: &dyn Stepper, progress: &Progress, clock: &Clock) -> Control;
+
+    /// At the ending, with the last state.
+    fn finish(&mut self, _stepper: &dyn Stepper, _ending: &Ending, _clock: &Clock) {}
 }
 
+/// A closure of the progress is an observer of every unit of work (a progress display, an
+/// interrupt, a caller's budget); it also sees the final progress.
 impl<F: FnMut(&Progress) -> Control> Observer for F {
-    fn observe(&mut self, progress: &Progress) -> Control {
+    fn step(&mut self, _: &dyn Stepper, progress: &Progress, _: &Clock) -> Control {
         self(progress)
+    }
+    fn finish(&mut self, stepper: &dyn Stepper, _: &Ending, _: &Clock) {
+        // a bar or a log ends where the run did
+        self(&stepper.progress());
     }
 }
 
@@ -259,44 +350,96 @@ impl<F: FnMut(&Progress) -> Control> Observer for F {
 pub struct Quiet;
 
 impl Observer for Quiet {
-    fn observe(&mut self, _: &Progress) -> Control {
+    fn step(&mut self, _: &dyn Stepper, _: &Progress, _: &Clock) -> Control {
         Control::Continue
     }
 }
 
-/// Drive `stepper` until it ends or `observer` stops it. Returns the ending and the
-/// wall-clock time (s); the stepper keeps its last state.
-pub fn drive(stepper: &mut dyn Stepper, observer: &mut dyn Observer) -> (Ending, f64) {
-    drive_recorded(stepper, observer, None)
+/// How a driven run ended.
+#[derive(Clone, Debug)]
+pub struct Driven {
+    /// why it stopped
+    pub ending: Ending,
+    /// the driver's clock at the ending
+    pub clock: Clock,
+    /// wall time the observers took (s)
+    pub output: f64,
 }
 
-/// [`drive`], with `recorder` (when given) sampling the time series, the snapshots and
-/// the checkpoints after every unit of work at their cadence, and the last state at the
-/// ending. The recorder keeps its first write error for the caller
-/// ([`Recorder::finish`]): a full disk does not stop a long run.
-pub fn drive_recorded(
+impl Driven {
+    /// The run's timing: the solver's stages, the observers' output and the rest.
+    pub fn timing(&self, stepper: &dyn Stepper) -> Timing {
+        Timing::new(self.clock.wall, stepper.stages().into_iter(), self.output)
+    }
+}
+
+/// Drive `stepper` until it ends or `observer` stops it; the stepper keeps its last state.
+pub fn drive(stepper: &mut dyn Stepper, observer: &mut dyn Observer) -> Driven {
+    drive_with(stepper, &mut [observer], None, Clock::default())
+}
+
+/// [`drive`] with several observers (called in order; the first that asks to stop ends the
+/// run after the others saw the unit), a wall-clock limit (s) and the clock a restarted
+/// run continues from.
+pub fn drive_with(
     stepper: &mut dyn Stepper,
-    observer: &mut dyn Observer,
-    mut recorder: Option<&mut Recorder>,
-) -> (Ending, f64) {
+    observers: &mut [&mut dyn Observer],
+    wall_limit: Option<f64>,
+    resumed: Clock,
+) -> Driven {
     let start = Instant::now();
+    let mut limits = stepper.limits();
+    limits.wall = wall_limit;
+    let mut output = 0.0;
+    let mut clock = Clock { wall: 0.0, flow: resumed.flow };
+    let mut flow_started: Option<(Instant, f64)> = None;
+    let tick = |clock: &mut Clock, phase: Phase, flow_started: &mut Option<(Instant, f64)>| {
+        clock.wall = start.elapsed().as_secs_f64();
+        if phase == Phase::Flow {
+            let (t0, before) = *flow_started.get_or_insert((Instant::now(), clock.flow));
+            clock.flow = before + t0.elapsed().as_secs_f64();
+        }
+    };
+    let t = Instant::now();
+    for o in observers.iter_mut() {
+        o.start(stepper, &clock);
+    }
+    output += t.elapsed().as_secs_f64();
     let ending = loop {
-        if let Some(e) = stepper.step() {
-            // the observer sees the final state too, so a bar or a log ends where the run did
-            observer.observe(&stepper.progress());
+        let p = stepper.progress();
+        if let Some(e) = limits.reached(&p) {
             break e;
         }
-        if let Some(r) = recorder.as_deref_mut() {
-            r.after_unit(stepper);
+        if limits.wall.is_some_and(|w| start.elapsed().as_secs_f64() >= w) {
+            break Ending::WallClock;
         }
-        if observer.observe(&stepper.progress()) == Control::Stop {
+        if p.phase == Phase::Flow {
+            flow_started.get_or_insert((Instant::now(), clock.flow));
+        }
+        let own = stepper.step(&limits);
+        let p = stepper.progress();
+        tick(&mut clock, p.phase, &mut flow_started);
+        if let Some(e) = own {
+            break e;
+        }
+        let t = Instant::now();
+        let mut stop = false;
+        for o in observers.iter_mut() {
+            stop |= o.step(stepper, &p, &clock) == Control::Stop;
+        }
+        output += t.elapsed().as_secs_f64();
+        if stop {
             break Ending::Interrupted;
         }
     };
-    if let Some(r) = recorder {
-        r.at_end(stepper, &ending);
+    tick(&mut clock, stepper.progress().phase, &mut flow_started);
+    let t = Instant::now();
+    for o in observers.iter_mut() {
+        o.finish(stepper, &ending, &clock);
     }
-    (ending, start.elapsed().as_secs_f64())
+    output += t.elapsed().as_secs_f64();
+    clock.wall = start.elapsed().as_secs_f64();
+    Driven { ending, clock, output }
 }
 
 #[cfg(test)]
@@ -315,7 +458,10 @@ mod tests {
         fn name(&self) -> &'static str {
             "counter"
         }
-        fn step(&mut self) -> Option<Ending> {
+        fn limits(&self) -> Limits {
+            Limits { end_time: self.end as f64, end_tolerance: 0.0, max_steps: 7, wall: None }
+        }
+        fn step(&mut self, _: &Limits) -> Option<Ending> {
             if Some(self.n + 1) == self.bad {
                 return Some(Ending::Unstable(Breakdown {
                     time: self.n as f64,
@@ -326,7 +472,7 @@ mod tests {
                 }));
             }
             self.n += 1;
-            (self.n >= self.end).then_some(Ending::EndTime)
+            None
         }
         fn progress(&self) -> Progress {
             Progress {
@@ -334,6 +480,7 @@ mod tests {
                 time: self.n as f64,
                 end_time: self.end as f64,
                 steps: self.n,
+                total_steps: self.n,
                 dt: 1.0,
                 residual: None,
             }
@@ -341,7 +488,7 @@ mod tests {
         fn sample(&self) -> Sample {
             Sample { time: self.n as f64, steps: self.n, ..Sample::default() }
         }
-        fn report(&self, ending: &Ending, _: f64) -> RunReport {
+        fn report(&self, ending: &Ending, _: &Clock) -> RunReport {
             RunReport {
                 profiles: Profiles::default(),
                 summary: Summary::default(),
@@ -351,28 +498,42 @@ mod tests {
     }
 
     #[test]
-    fn the_driver_stops_on_the_end_on_a_breakdown_and_on_the_observer() {
-        let mut c = Counter { n: 0, end: 10, bad: None };
-        let (e, _) = drive(&mut c, &mut Quiet);
-        assert_eq!((e, c.n), (Ending::EndTime, 10));
+    fn the_driver_stops_on_the_end_the_cap_a_breakdown_and_the_observer() {
+        let mut c = Counter { n: 0, end: 5, bad: None };
+        let d = drive(&mut c, &mut Quiet);
+        assert_eq!((&d.ending, c.n), (&Ending::EndTime, 5));
 
-        let mut c = Counter { n: 0, end: 10, bad: Some(4) };
-        let (e, _) = drive(&mut c, &mut Quiet);
+        // the step cap (7) comes before an end time of 10
+        let mut c = Counter { n: 0, end: 10, bad: None };
+        let d = drive(&mut c, &mut Quiet);
+        assert_eq!((&d.ending, c.n), (&Ending::MaxSteps, 7));
+
+        let mut c = Counter { n: 0, end: 5, bad: Some(4) };
+        let d = drive(&mut c, &mut Quiet);
         assert_eq!(c.n, 3, "the last good state is kept");
-        let b = e.breakdown().expect("a breakdown");
+        let b = d.ending.breakdown().expect("a breakdown");
         assert_eq!(b.to_string(), "t = 3.000000 s: phi = NaN in cell 3 (z = 0.500000 m): not finite");
 
         let mut c = Counter { n: 0, end: 10, bad: None };
-        let mut seen = 0;
-        let mut stop_at_five = |p: &Progress| {
-            seen += 1;
-            if p.steps >= 5 {
+        let mut seen = Vec::new();
+        let mut stop_at_three = |p: &Progress| {
+            seen.push(p.steps);
+            if p.steps >= 3 {
                 Control::Stop
             } else {
                 Control::Continue
             }
         };
-        let (e, _) = drive(&mut c, &mut stop_at_five);
-        assert_eq!((e.name(), c.n, seen), ("interrupted", 5, 5));
+        let d = drive(&mut c, &mut stop_at_three);
+        assert_eq!((d.ending.name(), c.n), ("interrupted", 3));
+        // every unit, then the final state once more
+        assert_eq!(seen, [1, 2, 3, 3]);
+
+        // no time left: the wall-clock stop comes before any unit
+        let mut c = Counter { n: 0, end: 10, bad: None };
+        let d = drive_with(&mut c, &mut [&mut Quiet], Some(0.0), Clock::default());
+        assert_eq!((&d.ending, c.n), (&Ending::WallClock, 0));
+        let sum: f64 = d.timing(&c).stages.values().sum();
+        assert!((sum - d.clock.wall).abs() <= 1e-12 * d.clock.wall.max(1.0), "{sum} {:?}", d.clock);
     }
 }

@@ -5,7 +5,7 @@
 use saltus_core::scene::{LagrangianSettings, Scene, DEM_BED_PHI};
 use saltus_core::Error;
 
-use super::contact::{ContactModel, NormalForce};
+use crate::lagrangian::engine::contact::{ContactModel, NormalForce};
 
 pub use saltus_core::scene::{Bottom, FluidMode, Initial, ParticleSpec, Surface};
 

@@ -18,137 +18,29 @@
 //! their working size; every sum is taken in a fixed order, so the state after a step
 //! does not depend on the number of threads.
 
+use std::time::Instant;
+
 use rayon::prelude::*;
 
+use crate::run::timing::Stages;
+
+use super::chunks::{chunks_per_task, CHUNK};
 use super::contact::{contact_force, cross, ContactInput, ContactLaw, ContactModel};
-use super::cylinders::{HalfCylinders, Sphere, Touches, MAX_TOUCHES};
-use super::granular::{contact_values, spread, ContactSums, End, Slices, WallRecord, GROUP};
+use super::contact_sums::{contact_values, spread, ContactSums, End, Slices, WallRecord, GROUP};
+use super::cylinders::{HalfCylinders, Sphere, Touches};
 use super::neighbours::NeighbourList;
-use super::pairs::{Contact, PairOut, Touching};
+use super::pairs::{Contact, PairOut, PairView, Touching};
 use super::particles::{Box3, Particles};
+use super::walls::{Wall, MAX_WALLS};
 
-/// Particles per parallel work item: large enough to amortise scheduling, small enough
-/// to balance two cores. Every parallel loop of the DEM cuts its arrays into chunks of
-/// this fixed size (never into one chunk per thread), so the work items, and with them
-/// every rounding, are the same whatever the number of threads.
-pub const CHUNK: usize = 256;
-
-/// The most chunks one task of a parallel loop runs in a row. rayon's splitter hands each
-/// thread a run of many chunks that the other cannot steal from once it has started; in a
-/// large system such a run outlasts the other thread's work, which then idles long enough
-/// to fall asleep and must be woken at the next loop (about once per step from 4660
-/// grains on). Single-chunk tasks keep the tail of every loop short. On one thread the
-/// splitting would only cost, so it is left to rayon there. The chunks, and with them every
-/// rounding, are the same either way.
-pub fn chunks_per_task() -> usize {
-    if rayon::current_num_threads() > 1 {
-        1
-    } else {
-        usize::MAX
-    }
-}
-
-/// A flat wall at `position` along `axis`; particles live on the side `sign` (+1: above).
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct Wall {
-    /// 0, 1 or 2 (x, y, z)
-    pub axis: usize,
-    /// coordinate of the plane (m)
-    pub position: f64,
-    /// +1 if particles are at larger coordinates, -1 otherwise
-    pub sign: f64,
-}
-
-/// A pair in contact: the branch vector from i to j, the unit normal, the force on i (N)
-/// and the power the contact dissipates (W).
-type Touch = ([f64; 3], [f64; 3], [f64; 3], f64);
-
-/// Most walls a scene can have (bottom and two side walls).
-pub const MAX_WALLS: usize = 3;
-
-/// Contacts of one mobile particle recorded for the granular fields besides its pairs:
-/// the walls', then the half-cylinders' ([`super::cylinders`]).
-pub const RECORD_SLOTS: usize = MAX_WALLS + MAX_TOUCHES;
-
-/// What the force of one listed pair reads, as slices: borrowed once per step, so that
-/// the pair loop, inlined, keeps their addresses in registers instead of reloading them
-/// through the particle and list structures for every pair.
-pub(super) struct PairView<'a> {
-    pub(super) x: [&'a [f64]; 3],
-    pub(super) v: [&'a [f64]; 3],
-    pub(super) w: [&'a [f64]; 3],
-    pub(super) radius: &'a [f64],
-    pub(super) i: &'a [u32],
-    pub(super) j: &'a [u32],
-    pub(super) shift: &'a [[f64; 3]],
-    pub(super) sqrt_m: &'a [f64],
-    pub(super) r_eff: &'a [f64],
-    pub(super) law: &'a ContactLaw,
-    pub(super) dt: f64,
-}
-
-impl PairView<'_> {
-    /// The force of pair q with history h: the branch vector, the unit normal, the force
-    /// on i and the dissipated power, or None out of contact.
-    #[inline(always)]
-    fn force(&self, q: usize, h: &mut [f64; 3]) -> Option<Touch> {
-        let (a, b) = (self.i[q] as usize, self.j[q] as usize);
-        let s = self.shift[q];
-        let [x, y, z] = self.x;
-        let d = [x[b] + s[0] - x[a], y[b] + s[1] - y[a], z[b] + s[2] - z[a]];
-        let (ra, rb) = (self.radius[a], self.radius[b]);
-        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        let reach = ra + rb;
-        if r2 >= reach * reach {
-            return None;
-        }
-        let dist = r2.sqrt();
-        let n = [d[0] / dist, d[1] / dist, d[2] / dist];
-        let [wx, wy, wz] = self.w;
-        let [vx, vy, vz] = self.v;
-        let arm = [ra * wx[a] + rb * wx[b], ra * wy[a] + rb * wy[b], ra * wz[a] + rb * wz[b]];
-        let spin = cross(arm, n);
-        let v_rel = [vx[b] - vx[a] - spin[0], vy[b] - vy[a] - spin[1], vz[b] - vz[a] - spin[2]];
-        let c = ContactInput { n, delta: reach - dist, v_rel, sqrt_m: self.sqrt_m[q], r_eff: self.r_eff[q] };
-        let (f, power) = contact_force(self.law, &c, h, self.dt);
-        Some((d, n, f, power))
-    }
-
-    /// The force of pair q into its slots (zero out of contact, the history cleared);
-    /// the branch vector, the force and the power in contact.
-    #[inline(always)]
-    pub(super) fn write(
-        &self,
-        q: usize,
-        h: &mut [f64; 3],
-        f_out: &mut [f64; 3],
-        t_out: &mut [f64; 3],
-    ) -> Option<TouchSums> {
-        match self.force(q, h) {
-            Some((d, n, f, power)) => {
-                *f_out = f;
-                *t_out = cross(n, f);
-                Some((d, f, power))
-            }
-            None => {
-                *h = [0.0; 3];
-                *f_out = [0.0; 3];
-                *t_out = [0.0; 3];
-                None
-            }
-        }
-    }
-}
-
-/// The branch vector, force on i and dissipated power of a pair in contact.
-type TouchSums = ([f64; 3], [f64; 3], f64);
-
-/// The DEM state and its parameters. The coupled solver of this module reaches into it;
-/// everyone else reads it through its methods.
+/// The DEM engine: its parameters (box, contact law, walls, bottom, time step: set once
+/// from the scene, carried in a checkpoint with the state so that a restore can be
+/// checked against the scene), its state (particles, neighbour list with the pairs'
+/// springs, the walls' and cylinders' springs, body force, clock) and its scratch
+/// ([`Scratch`], refilled by every step, never saved). The coupled solver reaches into
+/// the particles and the body force; everyone else reads it through its methods.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Dem {
-    /// particles
-    pub(super) p: Particles,
     /// periodic box
     bx: Box3,
     /// contact law
@@ -158,43 +50,84 @@ pub struct Dem {
     wall_friction: Option<f64>,
     /// flat walls
     walls: Vec<Wall>,
-    /// body acceleration of mobile particles: gravity and buoyancy (m/s^2)
-    pub(super) body: [f64; 3],
+    /// the half-cylinders of the bottom, if any
+    #[serde(default)]
+    cylinders: Option<HalfCylinders>,
     /// time step (s)
     dt: f64,
+    /// particles
+    pub(crate) p: Particles,
+    /// body acceleration of mobile particles: gravity and buoyancy (m/s^2)
+    pub(crate) body: [f64; 3],
     /// simulated time (s)
-    pub(super) time: f64,
+    pub(crate) time: f64,
     /// steps taken
     steps: u64,
     /// neighbour list and pair histories
     list: NeighbourList,
-    /// external force per mobile particle (N), set by the caller before each step
-    pub(super) ext: [Vec<f64>; 3],
-    /// external torque per mobile particle (N m)
-    ext_torque: [Vec<f64>; 3],
     /// history of the wall contacts of each mobile particle
     wall_hist: Vec<[[f64; 3]; MAX_WALLS]>,
-    /// the half-cylinders of the bottom, if any
-    #[serde(default)]
-    cylinders: Option<HalfCylinders>,
     /// history of the cylinder contacts of each mobile particle (sized with the mobile
     /// particles whether or not there are cylinders: the integration zips it)
     #[serde(default)]
     cyl_hist: Vec<Touches>,
-    // per-step scratch, resized by every step: not part of a checkpoint
-    #[serde(skip)]
-    pair_f: Vec<[f64; 3]>,
-    #[serde(skip)]
-    pair_t: Vec<[f64; 3]>,
-    #[serde(skip)]
-    touching: Touching,
-    /// the granular-field sums of the last sampled step ([`Dem::step_sampled`])
-    #[serde(skip)]
-    contact: ContactSums,
     /// a particle moved more than half the skin since the last build (set by the
     /// integration, so the check costs no extra pass)
     rebuild_due: bool,
+    #[serde(skip)]
+    work: Scratch,
 }
+
+/// What a DEM step refills: the external force and torque the caller sets before it, the
+/// pair forces, the contact flags, the contact sums of a sampled step, and the wall time
+/// of its stages.
+#[derive(Clone, Debug)]
+struct Scratch {
+    /// external force per mobile particle (N), set by the caller before each step
+    ext: [Vec<f64>; 3],
+    /// external torque per mobile particle (N m)
+    ext_torque: [Vec<f64>; 3],
+    pair_f: Vec<[f64; 3]>,
+    pair_t: Vec<[f64; 3]>,
+    touching: Touching,
+    /// the granular-field sums of the last sampled step ([`Dem::step_sampled`])
+    contact: ContactSums,
+    /// wall time of the step's stages ([`STAGES`])
+    stages: Stages,
+}
+
+impl Default for Scratch {
+    fn default() -> Self {
+        Self::new(0)
+    }
+}
+
+impl Scratch {
+    /// Scratch for `nm` mobile particles.
+    fn new(nm: usize) -> Self {
+        Self {
+            ext: [vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]],
+            ext_torque: [vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]],
+            pair_f: Vec::new(),
+            pair_t: Vec::new(),
+            touching: Touching::default(),
+            contact: ContactSums::default(),
+            stages: Stages::new(&STAGES),
+        }
+    }
+
+    /// The per-particle buffers for `nm` mobile particles, zero (a restored engine's, or
+    /// after the particles changed).
+    fn fit(&mut self, nm: usize) {
+        for v in self.ext.iter_mut().chain(self.ext_torque.iter_mut()) {
+            v.clear();
+            v.resize(nm, 0.0);
+        }
+    }
+}
+
+/// The stages of a DEM step whose wall time the engine counts.
+pub const STAGES: [&str; 3] = ["neighbours", "pair_forces", "integration"];
 
 impl Dem {
     /// A DEM engine; `skin` is the surface distance of the Verlet list (m).
@@ -211,16 +144,11 @@ impl Dem {
             time: 0.0,
             steps: 0,
             list: NeighbourList::new(skin),
-            ext: [vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]],
-            ext_torque: [vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]],
             wall_hist: vec![[[0.0; 3]; MAX_WALLS]; nm],
             cylinders: None,
             cyl_hist: vec![Touches::default(); nm],
-            pair_f: Vec::new(),
-            pair_t: Vec::new(),
-            touching: Touching::default(),
-            contact: ContactSums::default(),
             rebuild_due: true,
+            work: Scratch::new(nm),
         }
     }
 
@@ -270,17 +198,23 @@ impl Dem {
     /// External (fluid) force per mobile particle (N), one slice per component, for the
     /// caller to fill before [`Dem::step`].
     pub fn external_force_mut(&mut self) -> &mut [Vec<f64>; 3] {
-        &mut self.ext
+        if self.work.ext[0].len() != self.p.n_mobile {
+            self.work.fit(self.p.n_mobile);
+        }
+        &mut self.work.ext
+    }
+
+    /// The particles, to read, beside the external force to fill from them (the drag).
+    pub fn particles_and_external_force(&mut self) -> (&Particles, &mut [Vec<f64>; 3]) {
+        self.external_force_mut();
+        (&self.p, &mut self.work.ext)
     }
 
     /// After particles were added, removed or renumbered: resize the per-particle buffers
     /// and forget every contact history.
     pub fn reset_topology(&mut self) {
         let nm = self.p.n_mobile;
-        for v in self.ext.iter_mut().chain(self.ext_torque.iter_mut()) {
-            v.clear();
-            v.resize(nm, 0.0);
-        }
+        self.work.fit(nm);
         self.wall_hist.clear();
         self.wall_hist.resize(nm, [[0.0; 3]; MAX_WALLS]);
         self.cyl_hist.clear();
@@ -297,32 +231,46 @@ impl Dem {
     /// Advance one time step; with `slices`, also take the contact sums of the granular
     /// fields on them ([`super::granular`]), read afterwards with [`Dem::contact_sums`].
     pub fn step_sampled(&mut self, slices: Option<Slices>) {
+        let mut t = Instant::now();
         if self.rebuild_due || self.list.x0.len() != self.p.len() {
             self.list.build(&mut self.p, &self.bx);
+            t = self.work.stages.lap(0, t);
+        }
+        if self.work.ext[0].len() != self.p.n_mobile {
+            // a restored engine's scratch is empty
+            self.work.fit(self.p.n_mobile);
         }
         if self.cyl_hist.len() != self.p.n_mobile {
             // a checkpoint from before the cylinders holds none
             self.cyl_hist.resize(self.p.n_mobile, Touches::default());
         }
         if let Some(s) = slices {
-            self.contact.prepare(s, self.list.len(), self.p.n_mobile);
+            self.work.contact.prepare(s, self.list.len(), self.p.n_mobile);
         }
         self.pair_forces(slices.is_some());
+        let t = self.work.stages.lap(1, t);
         self.rebuild_due = self.integrate(slices.is_some());
+        self.work.stages.lap(2, t);
         self.list.tick();
         self.time += self.dt;
         self.steps += 1;
     }
 
+    /// Wall time of the stages of the steps so far ([`STAGES`]; not part of the state: a
+    /// restored engine counts from zero).
+    pub fn stages(&self) -> &Stages {
+        &self.work.stages
+    }
+
     /// The contact sums of the last sampled step.
     pub fn contact_sums(&self) -> &ContactSums {
-        &self.contact
+        &self.work.contact
     }
 
     fn pair_forces(&mut self, sampled: bool) {
         let np = self.list.len();
-        self.pair_f.resize(np, [0.0; 3]);
-        self.pair_t.resize(np, [0.0; 3]);
+        self.work.pair_f.resize(np, [0.0; 3]);
+        self.work.pair_t.resize(np, [0.0; 3]);
         // the linear law in three passes, its force loop vectorised ([`super::pairs`])
         let lanes = self.law.model == ContactModel::Linear;
         let p = &self.p;
@@ -343,12 +291,12 @@ impl Dem {
         let (li, lj) = (&l.i, &l.j);
         let write =
             |q: usize, h: &mut [f64; 3], f_out: &mut [f64; 3], t_out: &mut [f64; 3]| view.write(q, h, f_out, t_out);
-        let was = self.touching.prepare(l);
+        let was = self.work.touching.prepare(l);
         if !sampled {
             // each pair owns its history, its output slots and its flag: chunks of the
             // four arrays zipped, pair q = chunk start + k
-            let pairs = (l.hist.par_chunks_mut(CHUNK), self.pair_f.par_chunks_mut(CHUNK));
-            (pairs, self.pair_t.par_chunks_mut(CHUNK), was.par_chunks_mut(CHUNK))
+            let pairs = (l.hist.par_chunks_mut(CHUNK), self.work.pair_f.par_chunks_mut(CHUNK));
+            (pairs, self.work.pair_t.par_chunks_mut(CHUNK), was.par_chunks_mut(CHUNK))
                 .into_par_iter()
                 .enumerate()
                 .with_max_len(chunks_per_task())
@@ -365,12 +313,12 @@ impl Dem {
             return;
         }
         // the same in groups of GROUP pairs, each adding its contacts to its own slab
-        let cs = &mut self.contact;
+        let cs = &mut self.work.contact;
         let (slices, slab_len) = (cs.slices, cs.slab_len());
         (
             l.hist.par_chunks_mut(GROUP),
-            self.pair_f.par_chunks_mut(GROUP),
-            self.pair_t.par_chunks_mut(GROUP),
+            self.work.pair_f.par_chunks_mut(GROUP),
+            self.work.pair_t.par_chunks_mut(GROUP),
             was.par_chunks_mut(GROUP),
             cs.slabs.par_chunks_mut(slab_len.max(1)),
         )
@@ -411,9 +359,9 @@ impl Dem {
         let walls = &self.walls;
         let cylinders = self.cylinders.as_ref();
         let l = &self.list;
-        let (pf, pt) = (&self.pair_f, &self.pair_t);
-        let ext = &self.ext;
-        let ext_t = &self.ext_torque;
+        let (pf, pt) = (&self.work.pair_f, &self.work.pair_t);
+        let ext = &self.work.ext;
+        let ext_t = &self.work.ext_torque;
         let p = &mut self.p;
         let (radius, inv_m, inv_i) = (&p.radius, &p.inv_mass, &p.inv_inertia);
         let x0 = &l.x0;
@@ -431,7 +379,7 @@ impl Dem {
         // the wall contacts' records of a sampled step, none otherwise
         let recorded = if sampled { nm } else { 0 };
         let unrecorded = nm.div_ceil(CHUNK) - recorded.div_ceil(CHUNK);
-        let records = self.contact.walls[..recorded]
+        let records = self.work.contact.walls[..recorded]
             .par_chunks_mut(CHUNK)
             .map(Some)
             .chain((0..unrecorded).into_par_iter().map(|_| None));

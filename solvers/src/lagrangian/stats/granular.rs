@@ -75,206 +75,13 @@
 //!
 //! A value that a slice cannot define (no particle volume there, or p_p <= 0 for I, J and
 //! mu_eff) is NaN here and an empty cell in profiles.csv.
-//!
-//! # Cost and reproducibility
-//!
-//! The contact sums are taken in the contact loop of the sampled DEM steps only: the
-//! pair loop of such a step runs over fixed groups of [`GROUP`] pairs, each with its own
-//! slab of slice sums, added in group order afterwards; the wall contacts are recorded per
-//! particle and added in particle order. No step allocates once the buffers reached their
-//! size, and the sums do not depend on the number of threads.
 
 use serde::{Deserialize, Serialize};
 
-use super::averaging::sphere_slices;
-use super::dem::{CHUNK, RECORD_SLOTS};
-use super::particles::Particles;
-use super::stats::Stats;
-
-/// Contact sums per slice, in this order: P_xx, P_yy, P_zz, P_xz, P_yz (times V), raw
-/// heat flux, dissipated power, contacts.
-pub const CONTACT_FIELDS: usize = 8;
-const PXX: usize = 0;
-const PYY: usize = 1;
-const PZZ: usize = 2;
-const PXZ: usize = 3;
-const PYZ: usize = 4;
-const HEAT: usize = 5;
-const DISS: usize = 6;
-const COUNT: usize = 7;
-
-/// Pairs per work item of a sampled step: each item owns one slab of slice sums, so the
-/// slabs, and the order they are added in, are the same whatever the number of threads.
-pub const GROUP: usize = 4 * CHUNK;
-
-/// A wall contact of one particle as recorded by the integration: the centre height and
-/// radius of the particle, the height where its branch meets the wall, then the
-/// [`CONTACT_FIELDS`] values (all zero without contact).
-pub type WallRecord = [f64; CONTACT_FIELDS + 3];
-
-/// The averaging slices in particle coordinates: `n` slices of height `dz` from `base`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Slices {
-    /// height of the bottom of the first slice (m)
-    pub base: f64,
-    /// slice height (m)
-    pub dz: f64,
-    /// number of slices
-    pub n: usize,
-}
-
-/// One end of a branch vector: a grain of centre height `z` and radius `r`, or a point
-/// (`r` = 0: where a branch meets a wall).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct End {
-    /// height (m)
-    pub z: f64,
-    /// radius (m), 0 for a point
-    pub r: f64,
-}
-
-impl End {
-    /// int_{-inf}^h (fraction of the end below z') dz' (m): for a grain, the integral of
-    /// its cap volume (pi s^2 (3r - s) / 3, s = h - (z - r)) over its volume,
-    /// (pi (r s^3 - s^4 / 4) / 3 + V (h - z - r)^+) / V; for a point, (h - z)^+.
-    #[inline(always)]
-    fn below(&self, h: f64) -> f64 {
-        if self.r <= 0.0 {
-            return (h - self.z).max(0.0);
-        }
-        let r = self.r;
-        let s = (h - (self.z - r)).clamp(0.0, 2.0 * r);
-        let s3 = s * s * s;
-        (r * s3 - 0.25 * s3 * s) / (4.0 * r * r * r) + (h - self.z - r).max(0.0)
-    }
-
-    /// Fraction of the end between heights `h0` and `h1`.
-    #[inline(always)]
-    fn share(&self, h0: f64, h1: f64) -> f64 {
-        if self.r <= 0.0 {
-            return if self.z >= h0 && self.z < h1 { 1.0 } else { 0.0 };
-        }
-        let v = 4.0 / 3.0 * std::f64::consts::PI * self.r.powi(3);
-        (super::averaging::cap_volume(self.z, self.r, h1) - super::averaging::cap_volume(self.z, self.r, h0)) / v
-    }
-}
-
-impl Slices {
-    /// Call `f(c, w)` for every slice c the contact of ends `a` and `b` reaches, w being
-    /// the share of the contact in it:
-    ///
-    /// ```text
-    /// w_c = int_{slice c} [S_a(z) - S_b(z)] dz / (z_b - z_a)
-    /// ```
-    ///
-    /// with S the fraction of an end below z: the branch from a to b, each end smeared
-    /// over its grain like phi is (Maurin eq A1), so that the contact stress's divergence
-    /// is exactly the contact forces weighted as phi weights them (module
-    /// documentation). The shares add up to 1 over the slices (parts outside the slices
-    /// are dropped); a horizontal branch (|z_b - z_a| below 1e-9 of the radii) takes the
-    /// limit, the mean of the two ends' volume shares.
-    #[inline]
-    pub fn branch(&self, a: End, b: End, mut f: impl FnMut(usize, f64)) {
-        let (dz, base) = (self.dz, self.base);
-        if !(a.z.is_finite() && b.z.is_finite()) {
-            return;
-        }
-        let lo = (a.z - a.r).min(b.z - b.r) - base;
-        let hi = (a.z + a.r).max(b.z + b.r) - base;
-        // compared so that NaN falls out too
-        if !(hi >= 0.0 && lo < self.n as f64 * dz) {
-            return;
-        }
-        let first = ((lo / dz).floor().max(0.0)) as usize;
-        let last = ((hi / dz).floor() as usize).min(self.n - 1);
-        let rise = b.z - a.z;
-        let face = |c: usize| base + c as f64 * dz;
-        if rise.abs() <= 1e-9 * (a.r + b.r) {
-            for c in first..=last {
-                let (h0, h1) = (face(c), face(c + 1));
-                f(c, 0.5 * (a.share(h0, h1) + b.share(h0, h1)));
-            }
-            return;
-        }
-        let mut below = a.below(face(first)) - b.below(face(first));
-        for c in first..=last {
-            let h1 = face(c + 1);
-            let upto = a.below(h1) - b.below(h1);
-            f(c, (upto - below) / rise);
-            below = upto;
-        }
-    }
-}
-
-/// The values one contact adds to its slices: `b` the branch vector from particle a to
-/// its partner, `f` the force on a, `va`/`vb` the translational velocities, `power` the
-/// dissipated power (W), `count` 1 for a pair, 1/2 for a wall (one particle's contact).
-#[inline(always)]
-pub fn contact_values(
-    b: [f64; 3],
-    f: [f64; 3],
-    va: [f64; 3],
-    vb: [f64; 3],
-    power: f64,
-    count: f64,
-) -> [f64; CONTACT_FIELDS] {
-    let work = 0.5 * (f[0] * (va[0] + vb[0]) + f[1] * (va[1] + vb[1]) + f[2] * (va[2] + vb[2]));
-    [-f[0] * b[0], -f[1] * b[1], -f[2] * b[2], -f[0] * b[2], -f[1] * b[2], -b[2] * work, power, count]
-}
-
-/// Add `values` of the contact of ends `a` and `b` into `slab` (slice-major,
-/// [`CONTACT_FIELDS`] per slice), divided as [`Slices::branch`] divides it.
-#[inline(always)]
-pub fn spread(slices: &Slices, slab: &mut [f64], a: End, b: End, values: &[f64; CONTACT_FIELDS]) {
-    slices.branch(a, b, |c, w| {
-        let row = &mut slab[c * CONTACT_FIELDS..(c + 1) * CONTACT_FIELDS];
-        for (r, v) in row.iter_mut().zip(values) {
-            *r += w * v;
-        }
-    });
-}
-
-/// The contact sums of one sampled DEM step (scratch of the DEM, refilled by every
-/// sampled step).
-#[derive(Clone, Debug, Default)]
-pub struct ContactSums {
-    /// the slices of this step
-    pub slices: Slices,
-    /// one slab of `slices.n` x [`CONTACT_FIELDS`] per group of [`GROUP`] pairs
-    pub slabs: Vec<f64>,
-    /// the wall (and half-cylinder) contacts of each mobile particle
-    pub walls: Vec<[WallRecord; RECORD_SLOTS]>,
-}
-
-impl ContactSums {
-    /// Zeroed sums for `pairs` pairs and `mobile` particles on `slices`.
-    pub fn prepare(&mut self, slices: Slices, pairs: usize, mobile: usize) {
-        self.slices = slices;
-        self.slabs.clear();
-        self.slabs.resize(pairs.div_ceil(GROUP).max(1) * slices.n * CONTACT_FIELDS, 0.0);
-        self.walls.clear();
-        self.walls.resize(mobile, [[0.0; CONTACT_FIELDS + 3]; RECORD_SLOTS]);
-    }
-
-    /// Length of one slab.
-    pub fn slab_len(&self) -> usize {
-        self.slices.n * CONTACT_FIELDS
-    }
-
-    /// Add the slabs in group order, then the wall contacts in particle order, into
-    /// `out` (slice-major, [`CONTACT_FIELDS`] per slice).
-    pub fn add_to(&self, out: &mut [f64]) {
-        for slab in self.slabs.chunks_exact(self.slab_len().max(1)) {
-            out.iter_mut().zip(slab).for_each(|(o, s)| *o += s);
-        }
-        for rec in self.walls.iter().flatten() {
-            if rec[3 + COUNT] > 0.0 {
-                let values: &[f64; CONTACT_FIELDS] = rec[3..].try_into().unwrap_or(&[0.0; CONTACT_FIELDS]);
-                spread(&self.slices, out, End { z: rec[0], r: rec[1] }, End { z: rec[2], r: 0.0 }, values);
-            }
-        }
-    }
-}
+use super::statistics::Stats;
+use crate::lagrangian::engine::contact_sums::*;
+use crate::lagrangian::engine::particles::Particles;
+use crate::lagrangian::engine::slicing::sphere_slices;
 
 /// Running sums of the granular fields over the averaging samples (the particle moments
 /// phi and the kinetic stress share with the profiles are in [`Stats`]).
@@ -497,7 +304,7 @@ fn set3(mut a: [Vec<f64>; 3], c: usize, v: [f64; 3]) -> [Vec<f64>; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lagrangian::averaging::cap_volume;
+    use crate::lagrangian::engine::slicing::cap_volume;
 
     /// int over [h0, h1] of (S_a - S_b) / (z_b - z_a) by Simpson's rule on the cap
     /// volumes: an independent evaluation of the shares.

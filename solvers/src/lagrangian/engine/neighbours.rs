@@ -36,7 +36,7 @@
 
 use rayon::prelude::*;
 
-use super::dem::{chunks_per_task, CHUNK};
+use super::chunks::{chunks_per_task, CHUNK};
 use super::particles::{Box3, Particles, Place};
 
 /// Pair list with history.

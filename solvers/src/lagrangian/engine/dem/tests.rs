@@ -1,7 +1,7 @@
 //! The DEM step with the adapted skin against a brute-force pair search.
 
 use super::*;
-use crate::lagrangian::neighbours::{pairs_within, MAX_SKIN_DIAMETERS};
+use crate::lagrangian::engine::neighbours::{pairs_within, MAX_SKIN_DIAMETERS};
 
 #[test]
 fn with_the_adapted_skin_every_contact_gets_its_force() {

@@ -9,18 +9,21 @@
 //! (`end_time <= stats_start` with fluid) is refused at set-up.
 //!
 //! The standard error of qs comes from the blocking of its samples
-//! ([`super::stats::Blocking`]); the paragraph states its blocks, or why there is none. A
+//! ([`crate::lagrangian::stats::blocking::Blocking`]); the paragraph states its blocks, or why there is none. A
 //! run without fluid reports its granular temperature history instead of transport
-//! ([`super::stats::Cooling`]), with Haff's law beside it for a homogeneous cooling scene.
+//! ([`Cooling`]), with Haff's law beside it for a homogeneous cooling scene.
 
-use super::solver::Lagrangian;
+use crate::lagrangian::run::config::FluidMode;
+use crate::lagrangian::run::solver::Lagrangian;
+use crate::lagrangian::stats::cooling::Cooling;
 use crate::output::{self, finite, Profiles, Summary};
-use crate::run::Ending;
+use crate::run::{Clock, Ending};
 use crate::RunReport;
 
-/// Profiles, summary and paragraph of `m` after a run that ended with `ending` after
-/// `wall` seconds of wall-clock time; the throughput is taken over the flow phase.
-pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
+/// Profiles, summary and paragraph of `m` after a run that ended with `ending` with the
+/// driver's clock at `clock`; the throughput is taken over the flow phase.
+pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
+    let wall = clock.wall;
     let scene = m.scene();
     let n = m.cells();
     let dz = m.dz();
@@ -70,12 +73,12 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
     let sample_period = m.dt() * m.fluid_every() as f64;
     let blocked = if samples > 0 { Some(m.stats().qs.estimate()) } else { None };
     let stderr = blocked.and_then(|b| b.ok()).and_then(|b| finite(b.stderr));
-    let fluid = m.config().settings.numerics.fluid != super::config::FluidMode::Off;
+    let fluid = m.config().settings.numerics.fluid != FluidMode::Off;
     let cooling = &m.stats().cooling;
     let dry = (!fluid && cooling.samples > 0).then_some(cooling);
     let haff = m.haff_constant().filter(|_| dry.is_some());
     let mobile = m.mobile();
-    let flow_wall = m.flow_wall();
+    let flow_wall = clock.flow;
     let throughput = (flow_wall > 0.0).then(|| mobile as f64 * m.steps() as f64 / flow_wall);
     let summary = Summary {
         scene: scene.meta.name.clone(),
@@ -110,6 +113,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         haff_max_deviation: haff.and_then(|_| finite(cooling.max_deviation)),
         rouse_number: rouse,
         neighbour_builds: Some(m.dem().list().builds),
+        timing: None,
     };
     let measured = match (summary.qs_star, summary.shields) {
         (None, _) | (_, None) if samples > 0 => format!(
@@ -157,7 +161,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         _ => format!(
             "no averaging sample (the window opens at solver.lagrangian.stats_start = {} s{}): no transport figures",
             m.config().settings.numerics.stats_start,
-            if m.config().settings.numerics.fluid == super::config::FluidMode::Off {
+            if m.config().settings.numerics.fluid == FluidMode::Off {
                 ", and runs without fluid take none"
             } else {
                 ""
@@ -168,7 +172,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
     let temperature = dry
         .map(|c| cooling_sentence(c, haff, m.time(), summary.granular_temperature.unwrap_or(0.0)))
         .unwrap_or_default();
-    let mut text = format!(
+    let text = format!(
         "{}: {} after {:.3} s of flow ({} DEM steps of {:.3e} s after {} of deposition, {} in all, {} neighbour-list builds, {} mobile particles, {samples} averaging samples) in {:.1} s wall time ({:.2e} particle-steps/s); {measured}; {steady}{temperature}",
         scene.meta.name,
         ending.name(),
@@ -182,10 +186,6 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, wall: f64) -> RunReport {
         wall,
         throughput.unwrap_or(0.0),
     );
-    if let Some(e) = m.vtk_error() {
-        text.push_str("; ");
-        text.push_str(e);
-    }
     RunReport { profiles: p, summary, text }
 }
 
@@ -212,7 +212,7 @@ fn steady_sentence(m: &Lagrangian<'_>, fluid: bool) -> String {
 
 /// The temperature history of a run without fluid, which ends at `time` with the
 /// temperature `last`, and, for a cooling scene, Haff's law.
-fn cooling_sentence(c: &super::stats::Cooling, haff: Option<f64>, time: f64, last: f64) -> String {
+fn cooling_sentence(c: &Cooling, haff: Option<f64>, time: f64, last: f64) -> String {
     let history = format!(
         "; granular temperature {:.4e} -> {last:.4e} m^2/s^2 over {time:.3} s (column theta_g of timeseries.csv; {} samples, one per fluid period, for Haff's law)",
         c.initial, c.samples

@@ -25,9 +25,9 @@ use saltus_core::scene::FREY_LEVELS;
 use saltus_core::Error;
 
 use super::config::{Bottom, Config, FluidMode, Initial};
-use super::cylinders::HalfCylinders;
-use super::dem::Wall;
-use super::particles::{Box3, Particles};
+use crate::lagrangian::engine::cylinders::HalfCylinders;
+use crate::lagrangian::engine::particles::{sphere_volume, Box3, Particles};
+use crate::lagrangian::engine::walls::Wall;
 
 /// Stream numbers of the set-up draws, far from the per-particle streams.
 const SETUP_STREAM: u64 = u64::MAX - 16;
@@ -41,11 +41,6 @@ pub struct Material {
     pub d: f64,
     /// particle density (kg/m^3)
     pub rho_p: f64,
-}
-
-/// Volume of a sphere of diameter d.
-pub fn sphere_volume(d: f64) -> f64 {
-    std::f64::consts::PI * d * d * d / 6.0
 }
 
 /// The periodic box of the scene.

@@ -24,16 +24,12 @@
 //! snapshot is taken right after the state check of a fluid update, and a snapshot
 //! holding a non-finite value is refused rather than written.
 
+use crate::lagrangian::coupling::drag::FluidField;
+use crate::lagrangian::engine::particles::Particles;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
-
-use saltus_core::Error;
-
-use super::drag::FluidField;
-use super::particles::Particles;
 
 /// Name of the collection file in the snapshot folder.
-pub const COLLECTION: &str = "series.pvd";
+pub use crate::run::paraview::COLLECTION;
 
 const B64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 
@@ -183,118 +179,6 @@ pub fn column_vtp(field: &FluidField) -> Result<String, String> {
     s.push_str("</Lines>\n");
     s.push_str(FOOTER);
     Ok(s)
-}
-
-/// The snapshot series of one run: its folder and the snapshots written so far. A DEM
-/// checkpoint saves the snapshots written (not the folder), so that the collection of a
-/// restarted run lists them all.
-#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
-pub struct Series {
-    #[serde(skip)]
-    dir: PathBuf,
-    /// (time, file, part) of every dataset written
-    entries: Vec<(f64, String, u8)>,
-    count: usize,
-}
-
-impl Series {
-    /// A series written into `dir` (created at the first snapshot).
-    pub fn new(dir: &Path) -> Self {
-        Self { dir: dir.to_path_buf(), entries: Vec::new(), count: 0 }
-    }
-
-    /// The same series, written on into `dir` (after a restart).
-    pub fn moved_to(mut self, dir: &Path) -> Self {
-        self.dir = dir.to_path_buf();
-        self
-    }
-
-    /// Snapshots written so far.
-    pub fn len(&self) -> usize {
-        self.count
-    }
-
-    /// Whether no snapshot was written.
-    pub fn is_empty(&self) -> bool {
-        self.count == 0
-    }
-
-    /// Write the snapshot of simulated time `time` (s): the particles, the column when
-    /// given, and the collection updated.
-    pub fn write(&mut self, time: f64, p: &Particles, column: Option<&FluidField>) -> Result<(), Error> {
-        let refuse = |what: &str, array: String| {
-            Error::Invalid(format!(
-                "{}: snapshot at t = {time:e} s not written: {what} array `{array}` holds a non-finite value",
-                self.dir.display()
-            ))
-        };
-        if !time.is_finite() {
-            return Err(refuse("the", "time".into()));
-        }
-        let mut files =
-            vec![(format!("particles_{:05}.vtp", self.count), particles_vtp(p).map_err(|a| refuse("particle", a))?)];
-        if let Some(f) = column {
-            files.push((format!("column_{:05}.vtp", self.count), column_vtp(f).map_err(|a| refuse("column", a))?));
-        }
-        std::fs::create_dir_all(&self.dir).map_err(|source| Error::Io { file: self.dir.clone(), source })?;
-        for (part, (name, text)) in files.into_iter().enumerate() {
-            let f = self.dir.join(&name);
-            std::fs::write(&f, text).map_err(|source| Error::Io { file: f, source })?;
-            self.entries.push((time, name, part as u8));
-        }
-        self.count += 1;
-        let f = self.dir.join(COLLECTION);
-        std::fs::write(&f, self.collection()).map_err(|source| Error::Io { file: f, source })
-    }
-
-    /// The `.pvd` text of the snapshots written so far.
-    pub fn collection(&self) -> String {
-        let mut s = String::from(
-            "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<Collection>\n",
-        );
-        for (t, file, part) in &self.entries {
-            // {:e} prints the shortest text that reads back as the same f64
-            let _ = writeln!(s, "<DataSet timestep=\"{t:e}\" group=\"\" part=\"{part}\" file=\"{file}\"/>");
-        }
-        s.push_str("</Collection>\n</VTKFile>\n");
-        s
-    }
-}
-
-impl super::solver::Lagrangian<'_> {
-    /// Write ParaView snapshots ([`self`](super::vtk)) into `dir` every
-    /// `solver.lagrangian.vtk_period` of flow time (if > 0).
-    pub fn set_vtk_dir(&mut self, dir: &Path) {
-        if self.cfg.settings.numerics.vtk_period > 0.0 {
-            // a restored run goes on with the snapshots its checkpoint lists
-            self.vtk = Some(match self.vtk.take() {
-                Some(series) => series.moved_to(dir),
-                None => Series::new(dir),
-            });
-        }
-    }
-
-    /// The snapshot series, when snapshots are written.
-    pub fn vtk_series(&self) -> Option<&Series> {
-        self.vtk.as_ref()
-    }
-
-    /// Why a snapshot was not written (the first failure), if one was not.
-    pub fn vtk_error(&self) -> Option<&str> {
-        self.vtk_error.as_deref()
-    }
-
-    /// Write the snapshot of the present state; a failure is kept for the report.
-    pub(super) fn write_vtk(&mut self) {
-        let column = (self.cfg.settings.numerics.fluid != saltus_core::scene::FluidMode::Off).then_some(&self.field);
-        if let Some(series) = self.vtk.as_mut() {
-            // a failed snapshot does not stop the run (the report tells it); the summary
-            // still tells the result
-            if let Err(e) = series.write(self.time, &self.dem.p, column) {
-                self.vtk_error.get_or_insert_with(|| e.to_string());
-            }
-        }
-    }
 }
 
 #[cfg(test)]

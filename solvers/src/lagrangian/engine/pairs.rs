@@ -28,16 +28,93 @@ use std::cell::RefCell;
 
 use multiversion::multiversion;
 
-use super::contact::cross;
-use super::dem::{PairView, CHUNK};
+use super::chunks::CHUNK;
+use super::contact::{contact_force, cross, ContactInput, ContactLaw};
 use super::neighbours::NeighbourList;
+
+/// A pair in contact: the branch vector from i to j, the unit normal, the force on i (N)
+/// and the power the contact dissipates (W).
+type Touch = ([f64; 3], [f64; 3], [f64; 3], f64);
+
+/// What the force of one listed pair reads, as slices: borrowed once per step, so that
+/// the pair loop, inlined, keeps their addresses in registers instead of reloading them
+/// through the particle and list structures for every pair.
+pub(crate) struct PairView<'a> {
+    pub(crate) x: [&'a [f64]; 3],
+    pub(crate) v: [&'a [f64]; 3],
+    pub(crate) w: [&'a [f64]; 3],
+    pub(crate) radius: &'a [f64],
+    pub(crate) i: &'a [u32],
+    pub(crate) j: &'a [u32],
+    pub(crate) shift: &'a [[f64; 3]],
+    pub(crate) sqrt_m: &'a [f64],
+    pub(crate) r_eff: &'a [f64],
+    pub(crate) law: &'a ContactLaw,
+    pub(crate) dt: f64,
+}
+
+impl PairView<'_> {
+    /// The force of pair q with history h: the branch vector, the unit normal, the force
+    /// on i and the dissipated power, or None out of contact.
+    #[inline(always)]
+    fn force(&self, q: usize, h: &mut [f64; 3]) -> Option<Touch> {
+        let (a, b) = (self.i[q] as usize, self.j[q] as usize);
+        let s = self.shift[q];
+        let [x, y, z] = self.x;
+        let d = [x[b] + s[0] - x[a], y[b] + s[1] - y[a], z[b] + s[2] - z[a]];
+        let (ra, rb) = (self.radius[a], self.radius[b]);
+        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let reach = ra + rb;
+        if r2 >= reach * reach {
+            return None;
+        }
+        let dist = r2.sqrt();
+        let n = [d[0] / dist, d[1] / dist, d[2] / dist];
+        let [wx, wy, wz] = self.w;
+        let [vx, vy, vz] = self.v;
+        let arm = [ra * wx[a] + rb * wx[b], ra * wy[a] + rb * wy[b], ra * wz[a] + rb * wz[b]];
+        let spin = cross(arm, n);
+        let v_rel = [vx[b] - vx[a] - spin[0], vy[b] - vy[a] - spin[1], vz[b] - vz[a] - spin[2]];
+        let c = ContactInput { n, delta: reach - dist, v_rel, sqrt_m: self.sqrt_m[q], r_eff: self.r_eff[q] };
+        let (f, power) = contact_force(self.law, &c, h, self.dt);
+        Some((d, n, f, power))
+    }
+
+    /// The force of pair q into its slots (zero out of contact, the history cleared);
+    /// the branch vector, the force and the power in contact.
+    #[inline(always)]
+    pub(crate) fn write(
+        &self,
+        q: usize,
+        h: &mut [f64; 3],
+        f_out: &mut [f64; 3],
+        t_out: &mut [f64; 3],
+    ) -> Option<TouchSums> {
+        match self.force(q, h) {
+            Some((d, n, f, power)) => {
+                *f_out = f;
+                *t_out = cross(n, f);
+                Some((d, f, power))
+            }
+            None => {
+                *h = [0.0; 3];
+                *f_out = [0.0; 3];
+                *t_out = [0.0; 3];
+                None
+            }
+        }
+    }
+}
+
+/// The branch vector, force on i and dissipated power of a pair in contact.
+type TouchSums = ([f64; 3], [f64; 3], f64);
 
 // the compaction indexes its lanes with a mask of CHUNK - 1
 const _: () = assert!(CHUNK.is_power_of_two());
 
 /// The contacts of a block of at most [`CHUNK`] pairs as a structure of arrays; one per
 /// thread, reused from block to block.
-pub(super) struct Lanes {
+pub(crate) struct Lanes {
     /// index of the contact's pair in the block
     k: [u32; CHUNK],
     /// whether pair k of the block is in contact
@@ -88,14 +165,14 @@ thread_local! {
 
 /// One contact of a block, for the callers that take the granular sums: the pair, the
 /// branch vector, the force on i and the dissipated power.
-pub(super) type Contact = (usize, [f64; 3], [f64; 3], f64);
+pub(crate) type Contact = (usize, [f64; 3], [f64; 3], f64);
 
 /// Which pairs of the list were in contact at the last step: a pair out of contact holds
 /// a zero history and zero force slots, so that only the pairs that leave contact need
 /// clearing. Scratch, laid out again (every pair flagged, i.e. cleared at the next step
 /// if out of contact) for each new list, after a restart and after a clone.
 #[derive(Debug, Default)]
-pub(super) struct Touching {
+pub(crate) struct Touching {
     /// pair q was in contact at the last step
     was: Vec<bool>,
     /// the build of the list the flags belong to (0: none)
@@ -110,7 +187,7 @@ impl Clone for Touching {
 
 impl Touching {
     /// The flags of `list`, laid out anew unless they already belong to it.
-    pub(super) fn prepare(&mut self, list: &NeighbourList) -> &mut [bool] {
+    pub(crate) fn prepare(&mut self, list: &NeighbourList) -> &mut [bool] {
         if self.build != list.builds || self.was.len() != list.len() {
             self.build = list.builds;
             self.was.clear();
@@ -122,11 +199,11 @@ impl Touching {
 
 /// What the pair loop writes for a run of pairs: their histories, force slots (force on
 /// i), torque slots (n x f) and contact flags.
-pub(super) struct PairOut<'a> {
-    pub(super) hist: &'a mut [[f64; 3]],
-    pub(super) f: &'a mut [[f64; 3]],
-    pub(super) t: &'a mut [[f64; 3]],
-    pub(super) was: &'a mut [bool],
+pub(crate) struct PairOut<'a> {
+    pub(crate) hist: &'a mut [[f64; 3]],
+    pub(crate) f: &'a mut [[f64; 3]],
+    pub(crate) t: &'a mut [[f64; 3]],
+    pub(crate) was: &'a mut [bool],
 }
 
 impl PairView<'_> {
@@ -135,7 +212,7 @@ impl PairView<'_> {
     /// the last step (updated; the others hold zeros already), and `each` sees every pair
     /// in contact, in pair order. Bit for bit the numbers of [`PairView::write`] pair by
     /// pair.
-    pub(super) fn linear_pairs(&self, o: usize, out: PairOut<'_>, mut each: impl FnMut(Contact)) {
+    pub(crate) fn linear_pairs(&self, o: usize, out: PairOut<'_>, mut each: impl FnMut(Contact)) {
         let PairOut { hist, f, t, was } = out;
         LANES.with(|lanes| {
             let l = &mut lanes.borrow_mut();
@@ -295,7 +372,7 @@ mod tests {
     use rand::Rng as _;
 
     use super::*;
-    use crate::lagrangian::contact::{ContactLaw, NormalForce};
+    use crate::lagrangian::engine::contact::{ContactLaw, NormalForce};
 
     #[test]
     fn the_lanes_give_the_forces_of_the_contact_law_bit_for_bit() {

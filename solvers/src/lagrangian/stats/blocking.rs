@@ -240,3 +240,84 @@ impl Blocking {
         Err(NoEstimate::TooFewBlocks { samples, block_samples: 1u64 << first })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng as _;
+    use rand_distr::{Distribution as _, StandardNormal};
+
+    /// `n` samples of the AR(1) series x_t = a x_{t-1} + sqrt(1 - a^2) sigma eps_t,
+    /// started in its stationary law (variance sigma^2), around `mean`.
+    fn ar1(n: usize, a: f64, sigma: f64, mean: f64, seed: u64) -> Blocking {
+        let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
+        let mut eps = || -> f64 { StandardNormal.sample(&mut rng) };
+        let mut b = Blocking::new();
+        let mut x = sigma * eps();
+        for _ in 0..n {
+            b.add(mean + x);
+            x = a * x + (1.0 - a * a).sqrt() * sigma * eps();
+        }
+        b
+    }
+
+    /// Exact standard error of the mean of `n` stationary AR(1) samples:
+    /// Var = sigma^2 / n [(1 + a)/(1 - a) - 2 a (1 - a^n) / (n (1 - a)^2)].
+    fn ar1_stderr(n: usize, a: f64, sigma: f64) -> f64 {
+        let nf = n as f64;
+        (sigma * sigma / nf * ((1.0 + a) / (1.0 - a) - 2.0 * a * (1.0 - a.powi(n as i32)) / (nf * (1.0 - a).powi(2))))
+            .sqrt()
+    }
+
+    #[test]
+    fn blocking_recovers_the_standard_error_of_an_ar1_series() {
+        // correlation time -1/ln(a): 9.5 samples at a = 0.9, 99.5 at a = 0.99; 2^18
+        // samples. The blocking estimate's own error is 1/sqrt(2 (n_blocks - 1)) (about 2 %
+        // at a = 0.9, 5 % at 0.99) plus the bias of the residual correlation between blocks:
+        // each realisation within 12 %, the mean of 8 seeds within 5 %.
+        let n = 1 << 18;
+        for (a, sigma, mean) in [(0.0, 1.0, 0.0), (0.9, 0.3, 5.0), (0.99, 2.0, -1.0)] {
+            let exact = ar1_stderr(n, a, sigma);
+            let mut ratios = Vec::new();
+            for seed in 0..8 {
+                let b = ar1(n, a, sigma, mean, seed);
+                assert_eq!(b.samples(), n as u64);
+                let e = b.estimate().unwrap_or_else(|why| panic!("a = {a}, seed {seed}: {why}"));
+                let r = e.stderr / exact;
+                assert!((r - 1.0).abs() < 0.12, "a = {a}, seed {seed}: {} vs exact {exact} ({e:?})", e.stderr);
+                assert!(e.blocks >= MIN_BLOCKS);
+                ratios.push(r);
+            }
+            let mean_ratio = ratios.iter().sum::<f64>() / ratios.len() as f64;
+            eprintln!("a = {a}: estimated / exact standard error {mean_ratio:.4} ({ratios:.3?})");
+            assert!((mean_ratio - 1.0).abs() < 0.05, "a = {a}: mean ratio {mean_ratio}");
+        }
+    }
+
+    #[test]
+    fn blocking_mean_is_the_sample_mean() {
+        let xs: Vec<f64> = (0..1000).map(|i| 1e-3 * (1.0 + 0.1 * ((i * 7919) % 13) as f64)).collect();
+        let mut b = Blocking::new();
+        xs.iter().for_each(|x| b.add(*x));
+        let mean = xs.iter().sum::<f64>() / xs.len() as f64;
+        assert!((b.mean().unwrap_or(f64::NAN) / mean - 1.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn no_standard_error_from_too_few_or_too_correlated_samples() {
+        let mut b = Blocking::new();
+        assert_eq!(b.mean(), None);
+        for i in 0..(2 * MIN_BLOCKS - 1) {
+            b.add(i as f64);
+        }
+        assert_eq!(b.estimate(), Err(NoEstimate::TooFewSamples { samples: 2 * MIN_BLOCKS - 1 }));
+        // a correlation time of 1000 samples in 4096 samples: no level is both
+        // uncorrelated and made of 8 blocks
+        let b = ar1(4096, 0.999, 1.0, 0.0, 3);
+        assert!(matches!(b.estimate(), Err(NoEstimate::TooFewBlocks { .. })), "{:?}", b.estimate());
+        // a constant series has a zero standard error, not a missing one
+        let mut b = Blocking::new();
+        (0..100).for_each(|_| b.add(0.25));
+        assert_eq!(b.estimate().map(|e| e.stderr), Ok(0.0));
+    }
+}

@@ -42,34 +42,8 @@
 //!
 //! phi and the reported <v_x> are volume averages under both.
 
-use super::particles::Particles;
-
-/// Volume of the part of a sphere of centre height `zc` and radius `r` below height `h`.
-#[inline]
-pub fn cap_volume(zc: f64, r: f64, h: f64) -> f64 {
-    let s = (h - (zc - r)).clamp(0.0, 2.0 * r);
-    std::f64::consts::PI * s * s * (3.0 * r - s) / 3.0
-}
-
-/// Call `f(c, w)` for every cell c of a uniform grid of `n` cells of height `dz` (from 0)
-/// that the sphere of centre height `zc` and radius `r` (both from the grid's bottom)
-/// crosses, with w the volume of the sphere inside the cell (exact, from
-/// [`cap_volume`]); parts outside the grid are dropped.
-#[inline]
-pub fn sphere_slices(zc: f64, r: f64, n: usize, dz: f64, mut f: impl FnMut(usize, f64)) {
-    let top = n as f64 * dz;
-    if zc + r <= 0.0 || zc - r >= top {
-        return;
-    }
-    let lo = (((zc - r) / dz).floor().max(0.0)) as usize;
-    let hi = (((zc + r) / dz).floor() as usize).min(n - 1);
-    let mut below = cap_volume(zc, r, lo as f64 * dz);
-    for c in lo..=hi {
-        let upto = cap_volume(zc, r, (c + 1) as f64 * dz);
-        f(c, upto - below);
-        below = upto;
-    }
-}
+use crate::lagrangian::engine::particles::Particles;
+use crate::lagrangian::engine::slicing::sphere_slices;
 
 /// Which exchange the third sum of [`CellSums`] holds, and how [`CellSums::coupling`]
 /// reads it (module documentation).
@@ -297,7 +271,7 @@ mod tests {
             // velocity) cost the fluid, at that field, exactly sum_p F_x,p
             let (dz, n) = (0.002, 30);
             let m = k.len();
-            let mut field = crate::lagrangian::drag::FluidField::at_rest(n, dz, 0.0);
+            let mut field = crate::lagrangian::coupling::drag::FluidField::at_rest(n, dz, 0.0);
             field.set_velocity(&uc);
             let seen: Vec<f64> = z[..m].iter().map(|&z| field.sphere_velocity(z, R)).collect();
             let [beta, up, urx] = exchange(&z[..m], &v[..m], &k, &fl[..m], &seen, true, &uc);
@@ -319,7 +293,7 @@ mod tests {
             // FluidField::sphere_velocity (from the moments) against sum_c V_pc u_c / V_p
             // over the slices of the averaging, spheres across the bottom or the top included
             let (dz, n) = (0.002, 30);
-            let mut field = crate::lagrangian::drag::FluidField::at_rest(n, dz, base);
+            let mut field = crate::lagrangian::coupling::drag::FluidField::at_rest(n, dz, base);
             field.set_velocity(&uc);
             let mut sum = 0.0;
             sphere_slices(z, r, n, dz, |c, w| sum += w * uc[c]);
@@ -360,7 +334,7 @@ mod tests {
             // linear coefficient: "centre" and "sphere_average" then hand the column the
             // same beta and particle velocity, cell by cell, to round-off
             let (n, m) = (30, k.len());
-            let mut field = crate::lagrangian::drag::FluidField::at_rest(n, DZ, 0.0);
+            let mut field = crate::lagrangian::coupling::drag::FluidField::at_rest(n, DZ, 0.0);
             field.set_velocity(&[u; 30]);
             let centre: Vec<f64> = z[..m].iter().map(|&z| field.velocity(z)).collect();
             let sphere: Vec<f64> = z[..m].iter().map(|&z| field.sphere_velocity(z, R)).collect();

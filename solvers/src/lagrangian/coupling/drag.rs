@@ -41,8 +41,9 @@ use saltus_core::{DragLaw, FlowScales, Fluctuation, Hindrance, ParticleSlip, Tur
 
 use rayon::prelude::*;
 
-use super::dem::{chunks_per_task, CHUNK};
-use super::particles::Particles;
+use crate::lagrangian::engine::chunks::{chunks_per_task, CHUNK};
+use crate::lagrangian::engine::particles::{sphere_volume, Particles};
+use crate::lagrangian::engine::slicing::sphere_slices;
 
 /// Largest column height, in grain radii, for which [`FluidField::sphere_velocity`] uses
 /// the moments of the column (case 1: 63, Fry's Couette: 41).
@@ -197,7 +198,7 @@ impl FluidField {
 
     /// Mean fluid velocity over the sphere of centre height z and radius r,
     /// sum_c (V_pc / V_p) u_c with the slice volumes of the averaging
-    /// ([`super::averaging::sphere_slices`]): the velocity the grains' drag sees. Being the
+    /// ([`sphere_slices`]): the velocity the grains' drag sees. Being the
     /// transpose of the slice averaging, it makes the exchange hand the fluid exactly the
     /// grains' drag (see `averaging.rs`). Parts of the sphere outside the column see a
     /// fluid at rest (the no-slip bottom; the exchange drops them too).
@@ -216,7 +217,7 @@ impl FluidField {
         if self.moments[0].len() != n + 1 || n as f64 * self.dz > MOMENT_SPAN * r {
             // moments not refreshed since `u` changed size, or too coarse for this grain
             let mut sum = 0.0;
-            super::averaging::sphere_slices(z, r, self.u.len(), self.dz, |c, w| sum += w * self.u[c]);
+            sphere_slices(z, r, self.u.len(), self.dz, |c, w| sum += w * self.u[c]);
             return sum / (4.0 / 3.0 * std::f64::consts::PI * r * r * r);
         }
         let (a, b) = (self.integrals(z - r), self.integrals(z + r));
@@ -243,21 +244,21 @@ pub struct DragModels<'a> {
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct FluidForces {
     /// fluid density (kg/m^3)
-    pub(super) rho_f: f64,
+    pub(crate) rho_f: f64,
     /// fluid viscosity (m^2/s)
-    pub(super) nu_f: f64,
+    pub(crate) nu_f: f64,
     /// particle density (kg/m^3)
-    pub(super) rho_p: f64,
+    pub(crate) rho_p: f64,
     /// drag coefficient k_p with F = k_p u_r (kg/s), of the last evaluation
-    pub(super) k: Vec<f64>,
+    pub(crate) k: Vec<f64>,
     /// streamwise relative velocity u_r,x of the last evaluation (m/s)
-    pub(super) urx: Vec<f64>,
+    pub(crate) urx: Vec<f64>,
     /// fluctuation velocity of each particle (m/s)
-    pub(super) fluct: Vec<[f64; 3]>,
+    pub(crate) fluct: Vec<[f64; 3]>,
     /// time left before the next draw (s); -inf before the first draw
-    pub(super) left: Vec<f64>,
+    pub(crate) left: Vec<f64>,
     /// redraw delay when the closure gives no finite duration (s): the fluid period
-    pub(super) fallback_period: f64,
+    pub(crate) fallback_period: f64,
     /// no finite eddy drawn yet (the next one gets a random phase)
     fresh: Vec<bool>,
     rng: Vec<Rng>,
@@ -449,7 +450,7 @@ impl FluidForces {
 
     /// Particle response time m / k_p of particle `a` (s), for diagnostics.
     pub fn response_time(&self, p: &Particles, a: usize) -> f64 {
-        let m = self.rho_p * super::setup::sphere_volume(2.0 * p.radius[a]);
+        let m = self.rho_p * sphere_volume(2.0 * p.radius[a]);
         m / self.k[a]
     }
 }

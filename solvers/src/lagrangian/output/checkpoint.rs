@@ -1,0 +1,39 @@
+//! The state of a Lagrangian run as a checkpoint ([`crate::run::checkpoint`]): the
+//! solver's [`State`] in bincode (every f64 as its 8 bytes), so that a restart goes on bit
+//! for bit and a field added to the state is carried without a second list.
+//!
+//! Not saved: what the scene gives (closures, time step, fluid period, thread pool: the
+//! restart sets the solver up from the same scene first, [`crate::lagrangian::run::params`])
+//! and the workspace that every step refills.
+
+use bincode::Options as _;
+
+use crate::lagrangian::run::state::State;
+
+fn options() -> impl bincode::Options {
+    bincode::DefaultOptions::new()
+}
+
+/// Append `state` to `out`.
+pub(crate) fn save(state: &State, out: &mut Vec<u8>) -> Result<(), String> {
+    options().serialize_into(out, state).map_err(|e| format!("cannot encode the DEM state: {e}"))
+}
+
+/// The state `save` wrote, after checking that its sizes fit together and that it was
+/// written with the time step `dt` and the same column (`coupled`) and granular fields
+/// (`granular`) as this scene's: a state that does not fit is refused, never indexed.
+pub(crate) fn load(bytes: &[u8], dt: f64, coupled: bool, granular: bool) -> Result<State, String> {
+    let s: State = options()
+        .with_limit(bytes.len() as u64)
+        .deserialize(bytes)
+        .map_err(|e| format!("cannot decode the DEM state: {e}"))?;
+    if !(s.fits() && s.column.is_some() == coupled && s.granular.is_some() == granular && s.dem.dt() == dt) {
+        return Err(format!(
+            "the DEM state does not fit this scene ({} particles, {} fluid cells, time step {:e} s)",
+            s.dem.particles().len(),
+            s.field.u.len(),
+            s.dem.dt()
+        ));
+    }
+    Ok(s)
+}

@@ -1,0 +1,169 @@
+//! The deposition (`initial = "bed"`): the particles settle under gravity with the fluid at
+//! rest for `solver.lagrangian.settle_time`, one fluid period per call so that the driver sees it
+//! (phase [`crate::run::Phase::Setup`]) and `solver.lagrangian.max_steps` bounds it; then, with a
+//! rough bottom, the lowest particles are removed or fixed, and with `surface =
+//! "deposit"` the free surface is put `water_depth` above the deposit.
+
+use std::borrow::Cow;
+
+use super::config::{Bottom, FluidMode, Surface};
+use super::setup;
+use super::solver::{Lagrangian, CHECK_STEPS};
+use super::state::Stage;
+use crate::column::{FluidColumn, Grid};
+use crate::lagrangian::coupling::averaging::{CellSums, Seen};
+use crate::lagrangian::coupling::drag::{FluidField, FluidForces};
+use crate::lagrangian::stats::granular::GranularStats;
+use crate::lagrangian::stats::statistics::Stats;
+use crate::run::{Breakdown, Ending, Limits, Place};
+
+impl Lagrangian<'_> {
+    /// Deposition steps up to the next fluid period (the fluid is averaged and the
+    /// particles checked at its first step, as in the flow), then the end of the
+    /// deposition when its time is up; never past the step cap of `limits`. `Some` when
+    /// the deposition broke down.
+    pub(crate) fn deposit_period(&mut self, limits: &Limits) -> Option<Ending> {
+        let max_steps = limits.max_steps;
+        let fluid = self.params.cfg.settings.numerics.fluid != FluidMode::Off;
+        let period = self.params.fluid_every.min(CHECK_STEPS);
+        let end = (self.state.settle_steps + period).min(self.params.settle_total).min(max_steps);
+        while self.state.settle_steps < end {
+            let update = self.state.settle_steps.is_multiple_of(self.params.fluid_every) && fluid;
+            let checkpoint = self.state.settle_steps.is_multiple_of(CHECK_STEPS);
+            self.dem_step(update, false);
+            self.state.settle_steps += 1;
+            if update {
+                self.average();
+            }
+            if update || checkpoint {
+                if let Err(b) = self.check() {
+                    return Some(Ending::Unstable(during_deposition(b)));
+                }
+            }
+        }
+        if self.state.settle_steps >= self.params.settle_total {
+            if let Err(b) = self.finish_deposition() {
+                return Some(Ending::Unstable(during_deposition(b)));
+            }
+        }
+        None
+    }
+
+    /// The bed is down: restore the flow's body force, fix the rough layer or stop the
+    /// particles, forget the contacts, fit the column and start the flow's clocks.
+    fn finish_deposition(&mut self) -> Result<(), Breakdown> {
+        self.state.dem.body = self.params.flow_body;
+        if self.params.cfg.settings.numerics.bottom == Bottom::Rough {
+            let (_, removed, fixed) = setup::bed_counts(&self.params.cfg, &self.params.mat);
+            self.state.dem.p = setup::fix_rough_layer(&self.state.dem.p, removed, fixed, self.params.mat.rho_p);
+        } else {
+            let p = &mut self.state.dem.p;
+            for v in [&mut p.vx, &mut p.vy, &mut p.vz, &mut p.wx, &mut p.wy, &mut p.wz] {
+                v.fill(0.0);
+            }
+        }
+        self.state.dem.reset_topology();
+        if self.params.cfg.settings.numerics.surface == Surface::Deposit
+            && self.params.cfg.settings.numerics.fluid != FluidMode::Off
+        {
+            self.fit_column_to_deposit()?;
+        }
+        let n = self.state.dem.p.len();
+        let fallback = self.state.forces.fallback_period;
+        self.state.forces = FluidForces::new(
+            n,
+            self.params.seed,
+            self.state.forces.rho_f,
+            self.state.forces.nu_f,
+            self.params.mat.rho_p,
+        );
+        self.state.forces.fallback_period = fallback;
+        self.state.forces.restart_fluctuations();
+        self.state.dem.time = 0.0;
+        self.state.stage = Stage::Flow;
+        Ok(())
+    }
+
+    /// Surface of the deposit above the column bottom (m): the highest level where the
+    /// packing, averaged over one diameter, is half its largest such average. It sums the
+    /// particles into the cell sums, so it is no getter.
+    fn measure_deposit_surface(&mut self) -> f64 {
+        let d = self.params.mat.d;
+        let dz = self.state.field.dz;
+        let n = self.state.sums.vol.len();
+        // only the volumes are read: either exchange would do
+        self.state.sums.accumulate(
+            &self.state.dem.p,
+            self.state.field.base,
+            dz,
+            &self.state.forces.k,
+            &self.state.forces.urx,
+            Seen::Centre,
+        );
+        let w = ((d / dz).round() as usize).max(1);
+        // running sums: a window of w cells per cell would cost cells * d / dz, 1e11
+        // operations for a million cells
+        let mut prefix = Vec::with_capacity(n + 1);
+        prefix.push(0.0);
+        let mut acc = 0.0;
+        for &v in &self.state.sums.vol {
+            acc += v;
+            prefix.push(acc);
+        }
+        let mean: Vec<f64> = (0..n)
+            .map(|c| {
+                let (lo, hi) = (c.saturating_sub(w / 2), (c + w / 2 + 1).min(n));
+                (prefix[hi] - prefix[lo]) / ((hi - lo) as f64 * self.state.cell_volume)
+            })
+            .collect();
+        let best = mean.iter().fold(0.0f64, |a, &m| a.max(m));
+        match (0..n).rev().find(|&c| mean[c] >= 0.5 * best) {
+            Some(c) => (c as f64 + 0.5) * dz,
+            None => self.state.bed_surface,
+        }
+    }
+
+    /// Put the free surface `water_depth` above the deposit: a new column of the same
+    /// cell size (before the flow starts; it allocates).
+    fn fit_column_to_deposit(&mut self) -> Result<(), Breakdown> {
+        let surface = self.measure_deposit_surface();
+        let dz = self.state.field.dz;
+        let height = surface + self.params.cfg.domain.water_depth;
+        let cells = ((height / dz).round() as usize).max(2);
+        let fail = |reason: String| Breakdown {
+            time: 0.0,
+            place: Place::Column,
+            field: Cow::Borrowed("height"),
+            value: height,
+            reason,
+        };
+        let grid = Grid::uniform(cells, height).map_err(|e| fail(e.to_string()))?;
+        let dz = grid.dz()[0];
+        if let Some(params) = self.params.column_params {
+            self.state.column = Some(FluidColumn::new(grid, params).map_err(|e| fail(e.to_string()))?);
+        }
+        let base = self.state.field.base;
+        self.state.field = FluidField::at_rest(cells, dz, base);
+        self.state.field.set_bed_threshold(self.params.fluctuation.and_then(|f| f.above_bed()));
+        self.state.sums = CellSums::new(cells);
+        let v = |x: f64| vec![x; cells];
+        self.state.phi = v(0.0);
+        self.state.u_p = v(0.0);
+        self.state.beta = v(0.0);
+        self.state.tau_t = v(0.0);
+        self.state.stats = Stats::new(cells);
+        if self.state.granular.is_some() {
+            self.state.granular = Some(GranularStats::new(cells));
+        }
+        self.work.resize(cells);
+        self.state.cell_volume = self.params.cfg.domain.length * self.params.cfg.domain.width * dz;
+        self.state.bed_surface = surface;
+        Ok(())
+    }
+}
+
+/// A breakdown of the deposition says so.
+fn during_deposition(mut b: Breakdown) -> Breakdown {
+    b.reason.push_str(" (during the deposition)");
+    b
+}

@@ -1,0 +1,321 @@
+//! The stepping of the flow: one DEM step with the fluid force of the current field, the
+//! fluid update every fluid period (averages, column solve, field refresh, statistics),
+//! the checks of the state, and the unit of work the driver calls. Every stage's wall
+//! time is counted ([`super::STAGES`]).
+
+use std::borrow::Cow;
+use std::time::Instant;
+
+use saltus_core::scene::DragVelocity;
+
+use super::config::FluidMode;
+use super::solver::{Lagrangian, CHECK_STEPS, MAX_SPEED};
+use super::stage;
+use super::state::{Stage, State};
+use crate::column::{Closures, Coupling};
+use crate::inputs;
+use crate::lagrangian::coupling::averaging::Seen;
+use crate::run::{Breakdown, Ending, Limits, Place, Stepper};
+
+impl Lagrangian<'_> {
+    /// One DEM step with the fluid force of the current fluid field; with `sampled`, the
+    /// step takes the contact sums of the granular fields.
+    pub(crate) fn dem_step(&mut self, all: bool, sampled: bool) {
+        if self.params.cfg.settings.numerics.fluid != FluidMode::Off {
+            let t0 = Instant::now();
+            let upto = if all { self.state.dem.p.len() } else { self.state.dem.p.n_mobile };
+            let models = self.params.models();
+            let dt = self.state.dem.dt();
+            let State { dem, forces, field, .. } = &mut self.state;
+            let (p, ext) = dem.particles_and_external_force();
+            forces.evaluate(p, field, &models, dt, upto, ext);
+            if all && models.velocity == DragVelocity::SphereAverage {
+                // the exact exchange needs the fluid velocity each grain's drag saw,
+                // before the step moves it
+                let p = &self.state.dem.p;
+                self.work.seen.resize(p.len(), 0.0);
+                for ((s, &z), &r) in self.work.seen.iter_mut().zip(&p.z).zip(&p.radius) {
+                    *s = self.state.field.sphere_velocity(z, r);
+                }
+            }
+            self.work.stages.lap(stage::DRAG, t0);
+        }
+        let slices = sampled.then(|| self.slices());
+        self.state.dem.step_sampled(slices);
+    }
+
+    /// Average the particles on the cells and refresh phi (and the hindrance convention)
+    /// the particles see.
+    pub(crate) fn average(&mut self) {
+        let t0 = Instant::now();
+        let (k, urx) = (&self.state.forces.k, &self.state.forces.urx);
+        let seen = match self.params.cfg.settings.numerics.drag_velocity {
+            DragVelocity::Centre => Seen::Centre,
+            DragVelocity::SphereAverage => {
+                // one per particle even where no drag was evaluated (a dry run's samples)
+                self.work.seen.resize(self.state.dem.p.len(), 0.0);
+                Seen::SphereAverage(&self.work.seen)
+            }
+        };
+        self.state.sums.accumulate(&self.state.dem.p, self.state.field.base, self.state.field.dz, k, urx, seen);
+        let u_f: &[f64] = match &self.state.column {
+            Some(c) => c.velocity(),
+            None => &self.state.field.u,
+        };
+        self.state.sums.coupling(
+            self.state.cell_volume,
+            u_f,
+            &mut self.state.phi,
+            &mut self.state.u_p,
+            &mut self.state.beta,
+        );
+        for (c, &phi) in self.state.phi.iter().enumerate() {
+            self.state.field.phi[c] = phi.min(0.99);
+            self.state.field.re_ratio[c] = self.params.hindrance.reynolds_convention().ratio(phi.min(0.99));
+        }
+        self.state.field.set_bed_threshold(self.params.fluctuation.and_then(|f| f.above_bed()));
+        if self.params.re_free_hindrance {
+            let n = self.state.field.phi.len();
+            self.state.field.hindrance.resize(n, 1.0);
+            // Re_p does not matter for such a closure
+            self.params.hindrance.factor_batch(
+                &self.state.field.phi,
+                &self.work.zero_faces[..n],
+                &mut self.state.field.hindrance,
+            );
+        }
+        self.work.stages.lap(stage::AVERAGING, t0);
+    }
+
+    /// First non-finite or runaway particle.
+    pub(crate) fn check(&self) -> Result<(), Breakdown> {
+        let time = self.state.phase_time();
+        if let Some((a, field, value)) = self.state.dem.first_non_finite() {
+            return Err(Breakdown {
+                time,
+                place: Place::Particle { index: a },
+                field: Cow::Borrowed(field),
+                value,
+                reason: "not finite".into(),
+            });
+        }
+        let p = &self.state.dem.p;
+        for a in 0..p.n_mobile {
+            let s2 = p.vx[a] * p.vx[a] + p.vy[a] * p.vy[a] + p.vz[a] * p.vz[a];
+            if s2 > MAX_SPEED * MAX_SPEED {
+                return Err(Breakdown {
+                    time,
+                    place: Place::Particle { index: a },
+                    field: Cow::Borrowed("|v|"),
+                    value: s2.sqrt(),
+                    reason: self.speed_cause(p.z[a]),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Why a particle at height z outran [`MAX_SPEED`]: carried there by the fluid (a
+    /// fluid period too long for the explicit coupling, or a driving too strong), or
+    /// thrown by the contacts (a time step too large for their stiffness).
+    fn speed_cause(&self, z: f64) -> String {
+        let u = self.state.field.velocity(z);
+        let at = format!("speed above {MAX_SPEED} m/s at z = {} m", saltus_core::param::decimal(z));
+        if u.abs() > 0.5 * MAX_SPEED {
+            format!(
+                "{at}, where the fluid moves at {} m/s: the driving is too strong or solver.lagrangian.fluid_period = {} s too long for the coupling",
+                saltus_core::param::number(u),
+                saltus_core::param::number(self.params.cfg.settings.numerics.fluid_period)
+            )
+        } else {
+            format!(
+                "{at}, the fluid there at {} m/s: the contacts threw it, the time step {} s is too large for the contact stiffness (lower solver.lagrangian.dt_safety = {})",
+                saltus_core::param::number(u),
+                saltus_core::param::number(self.state.dem.dt()),
+                saltus_core::param::number(self.params.cfg.settings.numerics.dt_safety)
+            )
+        }
+    }
+
+    /// One fluid update: averages, column solve, field refresh, statistics.
+    fn fluid_update(&mut self) -> Result<(), Breakdown> {
+        self.average();
+        let t0 = Instant::now();
+        let tau_f = self.params.cfg.settings.numerics.fluid_period;
+        if let Some(col) = self.state.column.as_mut() {
+            let coupling = Coupling { phi: &self.state.field.phi, beta: &self.state.beta, u_p: &self.state.u_p };
+            let closures = Closures {
+                viscosity: self.params.viscosity,
+                turbulence: self.params.turbulence,
+                wall_friction: self.params.scene.closures.wall_friction.as_deref(),
+            };
+            if let Err(e) = col.step(tau_f, &coupling, &closures) {
+                return Err(Breakdown {
+                    time: self.state.time,
+                    place: Place::Column,
+                    field: Cow::Borrowed("u_f"),
+                    value: f64::NAN,
+                    reason: e.to_string(),
+                });
+            }
+            // a runaway column (a fluid period far beyond the particles' response time
+            // leaves the drag no hold on it) is stopped here with its cause, before the
+            // particles it would fling blow up
+            if let Some((c, &u)) = col.velocity().iter().enumerate().find(|(_, u)| u.is_nan() || u.abs() > MAX_SPEED) {
+                return Err(Breakdown {
+                    time: self.state.time,
+                    place: Place::Cell { index: c, z: col.grid().centres()[c] },
+                    field: Cow::Borrowed("u_f"),
+                    value: u,
+                    reason: format!(
+                        "fluid velocity above {MAX_SPEED} m/s: the driving is too strong or solver.lagrangian.fluid_period = {} s too long for the coupling",
+                        saltus_core::param::number(tau_f)
+                    ),
+                });
+            }
+            self.state.field.set_velocity(col.velocity());
+            self.state.field.nu_t.copy_from_slice(col.eddy_viscosity());
+            if let Some((k, omega)) = col.k_omega() {
+                let [kf, wf] = &mut self.state.field.k_omega;
+                kf.clear();
+                kf.extend_from_slice(k);
+                wf.clear();
+                wf.extend_from_slice(omega);
+            }
+            for ((r, &nu), &g) in self.state.field.reynolds.iter_mut().zip(col.eddy_viscosity()).zip(col.shear_rate()) {
+                *r = inputs::reynolds_stress(nu, g);
+            }
+            col.reynolds_stress(&mut self.state.tau_t);
+            let grid = col.grid();
+            let bed = inputs::bed_surface(grid.centres(), &self.state.field.phi, self.state.bed_surface);
+            self.state.field.scales =
+                inputs::flow_scales(grid.centres(), grid.dz(), col.velocity(), grid.height(), bed);
+        }
+        let t0 = self.work.stages.lap(stage::COLUMN, t0);
+        self.check()?;
+        let qs: f64 = self.state.sums.v[0].iter().sum::<f64>() / (self.state.cell_volume / self.state.field.dz);
+        self.state.steady.add(self.state.time, qs);
+        if self.state.time >= self.params.cfg.settings.numerics.stats_start {
+            let tau_face: &[f64] = match &self.state.column {
+                Some(c) => c.shear_stress(),
+                None => &self.work.zero_faces,
+            };
+            self.state.stats.add(
+                &self.state.sums,
+                &self.state.field.u,
+                &self.state.tau_t,
+                &self.state.field.nu_t,
+                &self.state.beta,
+                tau_face,
+                qs,
+            );
+            self.sample_granular();
+        }
+        self.work.stages.lap(stage::SAMPLING, t0);
+        Ok(())
+    }
+
+    /// One DEM step of the flow, with the fluid update when it is due, unless `limits`
+    /// are reached (`Ok(None)`, no step taken). `Ok(Some(true))` when the fluid was updated
+    /// or the state checked (every [`CHECK_STEPS`] steps). `solver.lagrangian.max_steps`
+    /// bounds the DEM steps of the whole run, deposition included.
+    fn flow_step(&mut self, limits: &Limits) -> Result<Option<bool>, Breakdown> {
+        let fluid = self.params.cfg.settings.numerics.fluid;
+        let every = self.params.fluid_every;
+        if self.state.settle_steps + self.state.steps >= limits.max_steps || self.state.time >= limits.end_time {
+            return Ok(None);
+        }
+        let update = self.state.steps.checked_rem(every) == Some(0);
+        // a fluid period of many thousand steps must not leave the state unchecked, nor the
+        // driver (progress, Ctrl-C) waiting, for all of them
+        let checkpoint = !update && self.state.steps.is_multiple_of(CHECK_STEPS);
+        if update && fluid == FluidMode::Off {
+            // the state at the start of the period, at its exact time: the first sample is
+            // the initial temperature Haff's law starts from
+            self.state.stats.cooling.add(self.state.time, self.state.dem.p.temperature(), self.params.haff);
+        }
+        let sampled = update && self.sample_due();
+        self.dem_step(update && fluid != FluidMode::Off, sampled && self.state.granular.is_some());
+        if update {
+            if fluid == FluidMode::Off {
+                self.check()?;
+            } else {
+                self.fluid_update()?;
+            }
+            if fluid == FluidMode::Off && sampled {
+                let t0 = Instant::now();
+                self.dry_sample();
+                self.work.stages.lap(stage::SAMPLING, t0);
+            }
+        } else if checkpoint {
+            self.check()?;
+        }
+        self.state.steps += 1;
+        self.state.time = self.state.steps as f64 * self.state.dem.dt();
+        Ok(Some(update || checkpoint))
+    }
+
+    /// One DEM step of the flow, with the fluid update when it is due: `Ok(true)` when the
+    /// fluid was updated or the state checked, `Err` with the ending when the run is over
+    /// (its end time or step cap reached, or a breakdown). For tests and benches that step
+    /// the flow one DEM step at a time; the driver steps it a fluid period at a time.
+    pub fn step_dem(&mut self) -> Result<bool, Ending> {
+        let limits = self.limits();
+        match self.flow_step(&limits) {
+            Ok(Some(checked)) => Ok(checked),
+            Ok(None) => Err(limits.reached(&self.progress()).unwrap_or(Ending::EndTime)),
+            Err(b) => Err(Ending::Unstable(b)),
+        }
+    }
+
+    /// DEM steps of the flow up to and including the next fluid update, or up to `limits`;
+    /// `Some` when the run ends for its own reasons (steady, a breakdown).
+    fn advance(&mut self, limits: &Limits) -> Option<Ending> {
+        loop {
+            match self.flow_step(limits) {
+                Err(b) => return Some(Ending::Unstable(b)),
+                Ok(None) => return None,
+                Ok(Some(false)) => {}
+                Ok(Some(true)) => {
+                    if self.params.cfg.settings.numerics.stop_when_steady && self.state.steady.is_steady() {
+                        return Some(Ending::Steady);
+                    }
+                    return None;
+                }
+            }
+        }
+    }
+
+    /// One unit of work of the current phase: a fluid period of the deposition or of the
+    /// flow.
+    pub(crate) fn unit_of_work(&mut self, limits: &Limits) -> Option<Ending> {
+        match self.state.stage {
+            Stage::Deposition => self.deposit_period(limits),
+            Stage::Flow => self.advance(limits),
+        }
+    }
+
+    /// Run the deposition to its end (nothing to do without one). `Err` with the ending
+    /// when the run ended during it (step cap, breakdown).
+    pub fn deposit(&mut self) -> Result<(), Ending> {
+        let limits = self.limits();
+        while self.state.stage == Stage::Deposition {
+            if let Some(e) = self.step(&limits) {
+                return Err(e);
+            }
+            if let Some(e) = limits.reached(&self.progress()) {
+                return Err(e);
+            }
+        }
+        Ok(())
+    }
+
+    /// Take `state` (a restored checkpoint) as the run's: the workspace sized for it and the
+    /// field's derived parts refreshed.
+    pub(crate) fn adopt(&mut self, state: State) {
+        self.state = state;
+        self.state.field.refresh();
+        self.state.field.set_bed_threshold(self.params.fluctuation.and_then(|f| f.above_bed()));
+        self.work.resize(self.state.field.u.len());
+    }
+}
