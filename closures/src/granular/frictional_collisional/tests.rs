@@ -1,10 +1,10 @@
 //! Property and limit tests of the frictional-collisional closure (Chassagne et al. 2023
 //! table 1, appendices B-D).
 
-use super::super::kinetic::radial_distribution::carnahan_starling;
 use super::*;
 use approx::assert_relative_eq;
 use proptest::prelude::*;
+use saltus_core::grain::carnahan_starling;
 
 fn model() -> FrictionalCollisional {
     FrictionalCollisional::default()
