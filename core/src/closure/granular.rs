@@ -145,30 +145,27 @@ pub struct JohnsonJacksonElastic {
 }
 
 impl JohnsonJacksonElastic {
-    /// p_el(phi) (Pa)
+    /// `law(phi - phi_rlp, phi_max - phi)` between the two packings, 0 below phi_rlp and
+    /// +inf at or above phi_max: the range of the pressure and of its derivative.
     #[inline]
-    pub fn pressure(&self, phi: f64) -> f64 {
+    fn between_packings(&self, phi: f64, law: impl FnOnce(f64, f64) -> f64) -> f64 {
         if phi < self.phi_rlp {
             0.0
         } else if phi >= self.phi_max {
             f64::INFINITY
         } else {
-            let a = phi - self.phi_rlp;
-            self.p0 * a * a * a / (self.phi_max - phi).powi(5)
+            law(phi - self.phi_rlp, self.phi_max - phi)
         }
+    }
+    /// p_el(phi) (Pa)
+    #[inline]
+    pub fn pressure(&self, phi: f64) -> f64 {
+        self.between_packings(phi, |a, b| self.p0 * a * a * a / b.powi(5))
     }
     /// dp_el/dphi = P0 (phi-phi_rlp)^2 / (phi_max-phi)^6 [3 (phi_max-phi) + 5 (phi-phi_rlp)] (Pa)
     #[inline]
     pub fn derivative(&self, phi: f64) -> f64 {
-        if phi < self.phi_rlp {
-            0.0
-        } else if phi >= self.phi_max {
-            f64::INFINITY
-        } else {
-            let a = phi - self.phi_rlp;
-            let b = self.phi_max - phi;
-            self.p0 * a * a * (3.0 * b + 5.0 * a) / b.powi(6)
-        }
+        self.between_packings(phi, |a, b| self.p0 * a * a * (3.0 * b + 5.0 * a) / b.powi(6))
     }
 }
 
