@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{assert_clean_failure, saltus, stdout};
+use common::{assert_clean_failure, closure_check, saltus, stdout};
 use saltus_core::registry;
 
 #[test]
