@@ -180,7 +180,7 @@ pub struct CompareReport {
     /// warnings of the runs and the figure, each once
     pub warnings: Vec<String>,
     /// profile columns compared with the base scene's reference data (`rms_<column>` in
-    /// the table, after [`COLUMNS`]), see [`crate::errors`]
+    /// the table, after [`COLUMNS`]), see [`crate::differences`]
     pub compared: Vec<String>,
     /// per variant, the RMS difference of each compared column (`None`: no run or no row)
     pub rms: Vec<Vec<Option<f64>>>,
