@@ -27,7 +27,7 @@ use saltus_core::Error;
 use saltus_solvers::RunReport;
 use serde::Deserialize;
 
-use crate::errors;
+use crate::differences;
 use crate::plot::{self, Reference, COMPARE_PANELS};
 use crate::runner;
 
@@ -180,11 +180,11 @@ pub struct CompareReport {
     /// warnings of the runs and the figure, each once
     pub warnings: Vec<String>,
     /// profile columns compared with the base scene's reference data (`rms_<column>` in
-    /// the table, after [`COLUMNS`]), see [`crate::errors`]
+    /// the table, after [`COLUMNS`]), see [`crate::differences`]
     pub compared: Vec<String>,
     /// per variant, the RMS difference of each compared column (`None`: no run or no row)
     pub rms: Vec<Vec<Option<f64>>>,
-    /// per variant, the bed-aligned metric ([`errors::ALIGNED`] columns, after the `rms_`
+    /// per variant, the bed-aligned metric ([`differences::ALIGNED`] columns, after the `rms_`
     /// ones); empty when the reference data have no `phi` column
     pub aligned: Vec<[Option<f64>; 4]>,
 }
@@ -201,7 +201,7 @@ impl CompareReport {
         header.extend(COLUMNS.iter().map(|c| c.to_string()));
         header.extend(self.compared.iter().map(|c| format!("rms_{c}")));
         if !self.aligned.is_empty() {
-            header.extend(errors::ALIGNED.iter().map(|c| c.to_string()));
+            header.extend(differences::ALIGNED.iter().map(|c| c.to_string()));
         }
         header.push("error".into());
         let rows = self
@@ -329,7 +329,7 @@ pub fn run(cmp: &Comparison, out: &Path, progress: bool) -> anyhow::Result<Compa
         }
     };
     // each compared column from the first reference file that has it
-    let sources: Vec<(String, &crate::table::Table)> = errors::COMPARED
+    let sources: Vec<(String, &crate::table::Table)> = differences::COMPARED
         .iter()
         .filter_map(|c| reference.iter().find(|(_, t)| t.get(c).is_some()).map(|(_, t)| (c.to_string(), t)))
         .collect();
@@ -339,7 +339,7 @@ pub fn run(cmp: &Comparison, out: &Path, progress: bool) -> anyhow::Result<Compa
             sources
                 .iter()
                 .map(|(c, t)| {
-                    r.report.as_ref().and_then(|rep| errors::rms_difference(&rep.profiles, t, c)).map(|e| e.0)
+                    r.report.as_ref().and_then(|rep| differences::rms_difference(&rep.profiles, t, c)).map(|e| e.0)
                 })
                 .collect()
         })
@@ -349,7 +349,7 @@ pub fn run(cmp: &Comparison, out: &Path, progress: bool) -> anyhow::Result<Compa
     let tables: Vec<&crate::table::Table> = reference.iter().map(|(_, t)| t).collect();
     let aligned = if tables.iter().any(|t| t.get("phi").is_some()) {
         runs.iter()
-            .map(|r| r.report.as_ref().and_then(|rep| errors::aligned(&rep.profiles, &tables)).unwrap_or_default())
+            .map(|r| r.report.as_ref().and_then(|rep| differences::aligned(&rep.profiles, &tables)).unwrap_or_default())
             .collect()
     } else {
         Vec::new()

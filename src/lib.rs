@@ -38,7 +38,7 @@ pub mod check;
 pub mod cli;
 pub mod compare;
 pub mod diagnose;
-pub mod errors;
+pub mod differences;
 pub mod eval;
 pub mod listing;
 pub mod plot;

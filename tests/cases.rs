@@ -266,7 +266,7 @@ fn the_peer_bedload_scene_has_the_numbers_of_the_peer_script() {
     assert!(close(scene.fluid.density, rho_f, 1e-12) && close(scene.physics.gravity, g, 1e-12));
     assert!((scene.physics.slope - angle.sin()).abs() < 1e-15, "slope {}", scene.physics.slope);
     // int(N_layer phi_max L W / (pi d^3 / 6)) mobile spheres
-    let count = (layers * phi_max * 10.0 * 10.0 / (std::f64::consts::PI / 6.0)) as usize;
+    let count = (layers * phi_max * 10.0 * 10.0 / saltus_core::grain::sphere_volume(1.0)) as usize;
     assert_eq!(l.particles, Some(count));
     assert_eq!(count, 1165);
     assert!(close(l.length.unwrap_or(0.0), 10.0 * d, 1e-12) && close(l.width.unwrap_or(0.0), 10.0 * d, 1e-12));

@@ -209,16 +209,11 @@ fn closure_eval_writes_inputs_then_outputs() {
     let row: Vec<f64> = lines.next().unwrap().split(',').map(|x| x.parse().unwrap()).collect();
     assert!((row[1] - (0.4 + 24.4 / 0.1)).abs() < 1e-9);
     // stdout without --output, inline-table model
-    let o = saltus(&[
-        "closure",
-        "eval",
-        "--family",
+    let o = closure_eval(
         "hindrance",
-        "--model",
         "{type = \"richardson_zaki\", exponent = 2.0}",
-        "--input",
-        write(&d, "h.csv", "phi,re_p\n0.5,1\n").to_str().unwrap(),
-    ]);
+        &write(&d, "h.csv", "phi,re_p\n0.5,1\n"),
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let s = stdout(&o);
     let last: f64 = s.lines().nth(1).unwrap().split(',').nth(2).unwrap().parse().unwrap();
@@ -232,15 +227,12 @@ fn closure_eval_writes_inputs_then_outputs() {
 fn closure_eval_wall_friction() {
     let d = tmp_dir("eval_wall");
     let input = write(&d, "re.csv", "re\n0\n100\n");
-    let eval = |model: &str, input: &std::path::Path| {
-        saltus(&["closure", "eval", "--family", "wall_friction", "--model", model, "--input", input.to_str().unwrap()])
-    };
-    let o = eval("type = \"graf_altinakar\"", &input);
+    let o = closure_eval("wall_friction", "type = \"graf_altinakar\"", &input);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(stdout(&o).trim(), "re,f,f_re\n0,,48\n100,0.48,48");
-    let o = eval("type = \"none\"", &input);
+    let o = closure_eval("wall_friction", "type = \"none\"", &input);
     assert_eq!(stdout(&o).trim(), "re,f,f_re\n0,0,0\n100,0,0");
-    let o = eval("type = \"graf_altinakar\"", &write(&d, "neg.csv", "re\n-1\n"));
+    let o = closure_eval("wall_friction", "type = \"graf_altinakar\"", &write(&d, "neg.csv", "re\n-1\n"));
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("neg.csv: row 2: re = -1"), "{}", stderr(&o));
 }
@@ -249,29 +241,11 @@ fn closure_eval_wall_friction() {
 fn closure_eval_kinetic_theory_and_granular() {
     let d = tmp_dir("eval_kt");
     let input = write(&d, "phi.csv", "phi\n0.01\n0.3\n0.55\n");
-    let o = saltus(&[
-        "closure",
-        "eval",
-        "--family",
-        "kinetic_theory",
-        "--model",
-        "restitution = 0.7",
-        "--input",
-        input.to_str().unwrap(),
-    ]);
+    let o = closure_eval("kinetic_theory", "restitution = 0.7", &input);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stdout(&o).starts_with("phi,g0,f1,f2,f3,f4,e_eff"), "{}", stdout(&o));
     let input = write(&d, "i.csv", "i\n0\n0.69\n");
-    let o = saltus(&[
-        "closure",
-        "eval",
-        "--family",
-        "granular",
-        "--model",
-        "type = \"mu_i\"",
-        "--input",
-        input.to_str().unwrap(),
-    ]);
+    let o = closure_eval("granular", "type = \"mu_i\"", &input);
     assert!(o.status.success(), "{}", stderr(&o));
     let rows: Vec<Vec<f64>> =
         stdout(&o).lines().skip(1).map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
@@ -283,61 +257,17 @@ fn closure_eval_kinetic_theory_and_granular() {
 fn closure_eval_bad_input_is_clean() {
     let d = tmp_dir("eval_bad");
     let input = write(&d, "in.csv", "phi\n0.1\n");
-    let err = assert_clean_failure(&saltus(&[
-        "closure",
-        "eval",
-        "--family",
-        "drag",
-        "--model",
-        "type = \"stokes\"",
-        "--input",
-        input.to_str().unwrap(),
-    ]));
+    let err = assert_clean_failure(&closure_eval("drag", "type = \"stokes\"", &input));
     assert!(err.contains("re_p"), "{err}");
-    let err = assert_clean_failure(&saltus(&[
-        "closure",
-        "eval",
-        "--family",
-        "drag",
-        "--model",
-        "type = \"stoke\"",
-        "--input",
-        input.to_str().unwrap(),
-    ]));
+    let err = assert_clean_failure(&closure_eval("drag", "type = \"stoke\"", &input));
     assert!(err.contains("known") && err.contains("stokes"), "{err}");
     let bad = write(&d, "bad.csv", "re_p\nabc\n");
-    let err = assert_clean_failure(&saltus(&[
-        "closure",
-        "eval",
-        "--family",
-        "drag",
-        "--model",
-        "type = \"stokes\"",
-        "--input",
-        bad.to_str().unwrap(),
-    ]));
+    let err = assert_clean_failure(&closure_eval("drag", "type = \"stokes\"", &bad));
     assert!(err.contains("bad.csv") && err.contains("abc"), "{err}");
-    let err = assert_clean_failure(&saltus(&[
-        "closure",
-        "eval",
-        "--family",
-        "viscosity",
-        "--model",
-        "type = \"einstein\"",
-        "--input",
-        write(&d, "p.csv", "phi\n1.5\n").to_str().unwrap(),
-    ]));
+    let err =
+        assert_clean_failure(&closure_eval("viscosity", "type = \"einstein\"", &write(&d, "p.csv", "phi\n1.5\n")));
     assert!(err.contains("phi"), "{err}");
-    let err = assert_clean_failure(&saltus(&[
-        "closure",
-        "eval",
-        "--family",
-        "drag",
-        "--model",
-        "type = = 1",
-        "--input",
-        input.to_str().unwrap(),
-    ]));
+    let err = assert_clean_failure(&closure_eval("drag", "type = = 1", &input));
     assert!(err.contains("syntax"), "{err}");
 }
 

@@ -150,7 +150,7 @@ fn case01_switched_to_the_dem_resolves_the_derived_defaults() {
     assert!(o.status.success(), "{}", stderr(&o));
     let t: toml::Table =
         stdout(&o).lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n").parse().unwrap();
-    let release = (0.075 + 3.0 * d) * 0.6 / (std::f64::consts::PI / 6.0 / 1.331);
+    let release = (0.075 + 3.0 * d) * 0.6 / (saltus_core::grain::sphere_volume(1.0) / 1.331);
     let expected = 3.0 * (2.0 * release / (9.81 * (1.0 - 1000.0 / 2500.0))).sqrt();
     let settle = t["solver"]["lagrangian"]["settle_time"].as_float().unwrap();
     assert!((settle - expected).abs() <= 5e-4, "{settle} vs {expected}");

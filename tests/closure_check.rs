@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{assert_clean_failure, saltus, stdout};
+use common::{assert_clean_failure, closure_check, saltus, stdout};
 use saltus_core::registry;
 
 #[test]
@@ -45,26 +45,12 @@ fn cli_passes_with_exit_0_and_a_line_per_check() {
 
 #[test]
 fn cli_bad_input_exits_2_naming_what_is_wrong() {
-    let e = assert_clean_failure(&saltus(&["closure", "check", "--family", "drag", "--model", "type = \"nope\""]));
+    let e = assert_clean_failure(&closure_check("drag", "type = \"nope\""));
     assert!(e.contains("nope") && e.contains("dallavalle"), "{e}");
-    let e = assert_clean_failure(&saltus(&[
-        "closure",
-        "check",
-        "--family",
-        "drag",
-        "--model",
-        "{type = \"dallavalle\", b = 1.0}",
-    ]));
+    let e = assert_clean_failure(&closure_check("drag", "{type = \"dallavalle\", b = 1.0}"));
     assert!(e.contains("`b`") || e.contains("b"), "{e}");
-    let e = assert_clean_failure(&saltus(&["closure", "check", "--family", "dragg", "--model", "type = \"stokes\""]));
+    let e = assert_clean_failure(&closure_check("dragg", "type = \"stokes\""));
     assert!(e.contains("unknown family `dragg`"), "{e}");
-    let e = assert_clean_failure(&saltus(&[
-        "closure",
-        "check",
-        "--family",
-        "drag",
-        "--model",
-        "{type = \"dallavalle\", a = -1.0}",
-    ]));
+    let e = assert_clean_failure(&closure_check("drag", "{type = \"dallavalle\", a = -1.0}"));
     assert!(e.contains("model.a` = -1") && e.contains("(0, 100]"), "{e}");
 }

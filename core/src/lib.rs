@@ -4,7 +4,8 @@
 //! every closure, the model registry and the declarative scene schema of saltus.
 //!
 //! Models live in `saltus-closures`; algorithms in `saltus-solvers`. This crate holds no
-//! physics beyond the contracts that the two sides agree on.
+//! physics beyond the contracts that the two sides agree on, and the
+//! [`grain`] geometry and hard-sphere packing that both evaluate.
 //!
 //! ## Adding a closure from outside the workspace
 //!
@@ -18,6 +19,7 @@
 pub mod closure;
 pub mod data;
 pub mod error;
+pub mod grain;
 pub mod needs;
 pub mod param;
 pub mod registry;

@@ -1,5 +1,6 @@
-//! The bed-aligned comparison of a sheet-flow profile with measured profiles (issue 12),
-//! one definition for the tests and the `saltus compare` table.
+//! The bed-aligned comparison of a sheet-flow profile with measured profiles,
+//! one definition for the tests and the `saltus compare` table, and the interpolation
+//! and RMS difference that the table's unshifted differences use too.
 //!
 //! A continuum model and an experiment rarely put the packed bed at the same level: the
 //! model's bed settles at the packing of its rheology, the measured origin is where the
@@ -52,19 +53,20 @@ pub fn shift(z: &[f64], phi: &[f64], data_z: &[f64], data_phi: &[f64]) -> Option
 }
 
 /// RMS difference between the run's `f` (levels `z`) and the data (`data_z`, `data_f`)
-/// at the data points that `keep` accepts (by data value), each compared at its level
-/// plus `shift`, with the number of points used.
+/// at the data points with a finite value that `keep` accepts (by data level and value),
+/// each compared at its level plus `shift` through [`interpolate`], with the number of
+/// points used; points where the run's value is not finite are left out.
 pub fn rms(
     z: &[f64],
     f: &[f64],
     data_z: &[f64],
     data_f: &[f64],
     shift: f64,
-    keep: impl Fn(f64) -> bool,
+    keep: impl Fn(f64, f64) -> bool,
 ) -> Option<(f64, usize)> {
     let (mut sum, mut count) = (0.0, 0usize);
     for (&zd, &fd) in data_z.iter().zip(data_f) {
-        if !(fd.is_finite() && keep(fd)) {
+        if !(fd.is_finite() && keep(zd, fd)) {
             continue;
         }
         let got = interpolate(z, f, zd + shift);
@@ -76,7 +78,7 @@ pub fn rms(
     (count > 0).then(|| ((sum / count as f64).sqrt(), count))
 }
 
-/// The issue-12 metric of a run against the Revil-Baudard data: (shift (m), RMS phi over
+/// The bed-aligned metric of a run against the Revil-Baudard data: (shift (m), RMS phi over
 /// the data points with phi > 0, RMS velocity over every velocity point). `u` is the
 /// run's fluid velocity, compared with the measured (ACVP) velocity.
 pub struct Aligned {
@@ -99,8 +101,8 @@ pub fn aligned(
     u_data: Option<(&[f64], &[f64])>,
 ) -> Option<Aligned> {
     let s = shift(z, phi, data_z, data_phi)?;
-    let phi_rms = rms(z, phi, data_z, data_phi, s, |p| p > 0.0)?;
-    let u_rms = u_data.and_then(|(zu, fu)| rms(z, u, zu, fu, s, |_| true));
+    let phi_rms = rms(z, phi, data_z, data_phi, s, |_, p| p > 0.0)?;
+    let u_rms = u_data.and_then(|(zu, fu)| rms(z, u, zu, fu, s, |_, _| true));
     Some(Aligned { shift: s, phi: phi_rms, u: u_rms })
 }
 

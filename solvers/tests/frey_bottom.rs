@@ -19,7 +19,7 @@ const RHO: f64 = 2500.0;
 const KN: f64 = 5.0e3;
 
 fn mass() -> f64 {
-    RHO * std::f64::consts::PI * D * D * D / 6.0
+    RHO * saltus_core::grain::sphere_volume(D)
 }
 
 /// A DEM of one mobile sphere over `cyl`, no walls, x periodic over the cylinders.

@@ -124,6 +124,28 @@ fn single_sphere_settles_at_the_dallavalle_terminal_velocity() {
     assert!(m.particles().vx[0].abs() < 1e-12);
 }
 
+/// Haff's cooling time of the homogeneous cooling scene (`dem_homogeneous_cooling.toml`:
+/// grains of d = 6 mm and e = 0.8 in a periodic box of side 0.1313 m) and what it is made
+/// of: (3/2) phi dT/dt = -F4 T^{3/2} / d gives T = T0 / (1 + t/tau)^2 with
+/// tau = 3 phi d / (F4 sqrt(T0)), F4 of Garzo-Dufty with the Carnahan-Starling g0.
+struct Haff {
+    tau: f64,
+    phi: f64,
+    g0: f64,
+    f4: f64,
+}
+
+/// [`Haff`] of `grains` grains at the initial temperature `t0`.
+fn haff(grains: usize, t0: f64) -> Haff {
+    use saltus_closures::granular::kinetic::garzo_dufty;
+    use saltus_core::grain::{carnahan_starling, sphere_volume};
+    let (d, e) = (6.0e-3, 0.8);
+    let phi = grains as f64 * sphere_volume(d) / 0.1313f64.powi(3);
+    let g0 = carnahan_starling(phi);
+    let f4 = garzo_dufty::f4(phi, e, g0);
+    Haff { tau: 3.0 * phi * d / (f4 * t0.sqrt()), phi, g0, f4 }
+}
+
 #[test]
 fn homogeneous_cooling_follows_haff_with_the_kinetic_theory_rate() {
     // VERIFICATION.md benchmark 7: T = T0 / (1 + t/tau)^2 with the dissipation F4 of the
@@ -133,19 +155,12 @@ fn homogeneous_cooling_follows_haff_with_the_kinetic_theory_rate() {
     // (soft contacts of 5 % of the free flight time and the non-Gaussian correction of the
     // cooling rate, about 1 % at e = 0.8, are the expected deviations), and the decay
     // exponent within 5 % of -2.
-    use saltus_closures::granular::kinetic::{garzo_dufty, radial_distribution};
     let s = scene("verification/dem_homogeneous_cooling.toml", &[]);
     let mut m = model(&s);
     m.deposit().expect("deposition");
     let p0 = m.particles();
-    let (d, e) = (6.0e-3, 0.8);
-    let volume = 0.1313f64.powi(3);
-    let phi = p0.n_mobile as f64 * std::f64::consts::PI * d * d * d / 6.0 / volume;
     let t0 = p0.temperature();
-    let g0 = radial_distribution::carnahan_starling(phi);
-    let f4 = garzo_dufty::f4(phi, e, g0);
-    // (3/2) phi dT/dt = -F4 T^{3/2} / d  =>  tau = 3 phi d / (F4 sqrt(T0))
-    let tau = 3.0 * phi * d / (f4 * t0.sqrt());
+    let Haff { tau, phi, g0, f4 } = haff(p0.n_mobile, t0);
     let mut samples = vec![(0.0, t0)];
     while m.step_unit().is_none() {
         samples.push((m.time(), m.particles().temperature()));
@@ -475,7 +490,6 @@ fn a_dry_cooling_run_reports_its_temperature_history_and_follows_haff() {
     // the closure library (Garzo-Dufty, Carnahan-Starling g0). Every row of the run (5.2 s,
     // 4 tau) within 12 % of Haff's law (8.9 % on this seed): the kinetic theory's tau is 1.3 % off the DEM's
     // (soft contacts, non-Gaussian correction) and 1000 particles fluctuate by a few %.
-    use saltus_closures::granular::kinetic::{garzo_dufty, radial_distribution};
     let s = scene("verification/dem_homogeneous_cooling.toml", &[]);
     let out = tmp_out("haff");
     let outcome = saltus_solvers::run(&s, &out, &mut Quiet).expect("runs");
@@ -491,11 +505,8 @@ fn a_dry_cooling_run_reports_its_temperature_history_and_follows_haff() {
     assert!(rows.iter().all(|r| r[cqs].is_empty()), "no transport without fluid");
     let (t_end, theta_end) = *history.last().expect("rows");
     assert!(history.len() > 100 && t_end > 5.1, "{} rows to {t_end} s", history.len());
-    let (d, e) = (6.0e-3, 0.8);
-    let phi = 1000.0 * std::f64::consts::PI * d * d * d / 6.0 / 0.1313f64.powi(3);
     let theta0 = history[0].1;
-    let f4 = garzo_dufty::f4(phi, e, radial_distribution::carnahan_starling(phi));
-    let tau = 3.0 * phi * d / (f4 * theta0.sqrt());
+    let tau = haff(1000, theta0).tau;
     let worst = history.iter().map(|(t, th)| (th / (theta0 / (1.0 + t / tau).powi(2)) - 1.0).abs()).fold(0.0, f64::max);
     eprintln!("Haff: tau {tau:.4} s, largest deviation of the history {:.2} %", 100.0 * worst);
     assert!(worst < 0.12, "temperature history off Haff's law by {worst}");

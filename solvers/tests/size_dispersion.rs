@@ -39,7 +39,7 @@ fn a_dispersed_bed_draws_its_diameters_in_the_band() {
     // each grain has the mass of its own sphere
     let rho = scene.particles.density;
     for (&a, &inv) in radii.iter().zip(&p.inv_mass[..n]) {
-        let m = rho * 4.0 / 3.0 * std::f64::consts::PI * a * a * a;
+        let m = rho * saltus_core::grain::sphere_volume(2.0 * a);
         assert!((inv * m - 1.0).abs() < 1e-12);
     }
 }

@@ -4,11 +4,11 @@
 //! viscosity and the heat flux against the transport coefficients (eqs 2.20-2.21, 3.7,
 //! 3.10), the drag dissipation against eqs 2.25 and 3.13.
 
-use saltus_closures::granular::kinetic::radial_distribution::carnahan_starling;
 use saltus_closures::granular::kinetic::{
     ChialvoSundaresanFrictionG0, ChialvoSundaresanG0, DragDissipation, RadialDistribution,
 };
-use saltus_core::{KineticCoefficients, KineticTheory, SaltationInput};
+use saltus_core::grain::carnahan_starling;
+use saltus_core::{KineticCoefficients, KineticTheory};
 use saltus_solvers::inputs::{DragKernel, DragPoints};
 use saltus_solvers::output::profile_gradient;
 
@@ -112,13 +112,7 @@ pub fn compare(
         .filter(|&k| phi[k] > phi_min && phi[k] < kt.phi_max() && p[k] > 0.0 && temp[k] > 0.0)
         .filter(|&k| [z[k], phi[k], p[k], temp[k]].iter().all(|v| v.is_finite()))
         .map(|k| {
-            // K of eq 2.10 from beta = phi (1 - phi) K, for the saltation correction (eq 3.6)
-            let s = SaltationInput {
-                sqrt_t: temp[k].sqrt(),
-                k_drag: beta[k] / (phi[k] * (1.0 - phi[k])),
-                particle_density: rho_p,
-                diameter: d,
-            };
+            let s = kt.saltation_input(phi[k], temp[k], beta[k], rho_p, d);
             let coef = kt.coefficients(phi[k], (salt && s.k_drag.is_finite()).then_some(&s));
             Cell { k, phi: phi[k], p: p[k], t: temp[k], coef }
         })
@@ -134,8 +128,7 @@ pub fn compare(
 
     let mut c = Comparison::new(label, "Gamma", "Gamma [W/m^3]", "phi");
     for cell in cells.iter().filter(|c| gamma_diss[c.k].is_finite()) {
-        let predicted = rho_p / d * cell.coef.f4 * cell.t * cell.t.sqrt();
-        c.push(z[cell.k], cell.phi, gamma_diss[cell.k], predicted);
+        c.push(z[cell.k], cell.phi, gamma_diss[cell.k], kt.dissipation(&cell.coef, rho_p, d, cell.t));
     }
     out.push(c);
 
@@ -146,7 +139,7 @@ pub fn compare(
         if g == 0.0 || !g.is_finite() || !mu[k].is_finite() {
             continue;
         }
-        let measured = mu[k] * cell.p / (rho_p * d * cell.t.sqrt() * g);
+        let measured = kt.viscosity_coefficient(mu[k] * cell.p, g, rho_p, d, cell.t);
         c.push(z[k], cell.phi, measured, cell.coef.f2);
     }
     out.push(c);
@@ -155,7 +148,7 @@ pub fn compare(
     let mut c = Comparison::new(label, "heat flux", "q_z [W/m^2]", "phi");
     let mut gradient = Vec::new();
     for cell in cells.iter().filter(|c| q[c.k].is_finite() && dtdz[c.k].is_finite()) {
-        let kappa = rho_p * d * cell.coef.f3 * cell.t.sqrt();
+        let kappa = kt.conductivity(&cell.coef, rho_p, d, cell.t.sqrt());
         if c.push(z[cell.k], cell.phi, q[cell.k], -kappa * dtdz[cell.k]) {
             gradient.push(dtdz[cell.k]);
         }
@@ -167,11 +160,11 @@ pub fn compare(
     Ok((out, fit))
 }
 
-/// g0 extracted from the pressure and held against the closure's own g0 and the library's
-/// models. With F1 = phi + 2 (1+e) phi^2 g0 (Garzo-Dufty, eq 2.19 and table 1) linear
-/// in g0, the measured F1 = p_p / (rho_p T) gives g0 = g0_closure (F1 - phi) /
-/// (F1_closure - phi): eq 3.1 with the closure's e and the total pressure, as Chassagne
-/// et al. do where the elastic pressure vanishes (above the packed bed).
+/// g0 extracted from the pressure ([`KineticTheory::radial_distribution_of_pressure`]:
+/// eq 3.1 with the closure's e and the total pressure, as Chassagne et al. do where the
+/// elastic pressure vanishes, above the packed bed) and held against the closure's own g0
+/// and the library's models, with the fit of a in eq 3.2 against
+/// [`KineticTheory::radial_distribution_regressor`].
 fn radial_distribution(
     label: &str,
     kt: &dyn KineticTheory,
@@ -196,8 +189,7 @@ fn radial_distribution(
     let mut points: Vec<(f64, f64, f64)> = Vec::with_capacity(cells.len());
     for cell in cells {
         let c = &cell.coef;
-        let f1 = cell.p / (f.rho_p * cell.t);
-        let g0 = c.g0 * (f1 - cell.phi) / (c.f1 - cell.phi);
+        let g0 = kt.radial_distribution_of_pressure(c, cell.phi, cell.p, f.rho_p, cell.t);
         if !(g0.is_finite() && c.g0.is_finite() && cell.phi < phi_max) {
             continue;
         }
@@ -208,7 +200,7 @@ fn radial_distribution(
         }
         // relative least squares: g0 spans three decades between the saltation layer
         // and the bed, and an absolute fit would be the densest cell's alone
-        let x = cell.phi * cell.phi / (phi_max - cell.phi).powf(1.5) / g0;
+        let x = kt.radial_distribution_regressor(cell.phi) / g0;
         points.push((cell.phi, x, (g0 - carnahan_starling(cell.phi)) / g0));
     }
     let a_eq33 = RadialDistribution::default().coefficient_a(mu_p);

@@ -13,6 +13,17 @@ pub fn saltus(args: &[&str]) -> Output {
         .expect("run saltus")
 }
 
+/// `saltus closure eval --family <family> --model <model> --input <input>` (the output on
+/// stdout).
+pub fn closure_eval(family: &str, model: &str, input: &Path) -> Output {
+    saltus(&["closure", "eval", "--family", family, "--model", model, "--input", input.to_str().unwrap()])
+}
+
+/// `saltus closure check --family <family> --model <model>`.
+pub fn closure_check(family: &str, model: &str) -> Output {
+    saltus(&["closure", "check", "--family", family, "--model", model])
+}
+
 pub fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
@@ -29,6 +40,17 @@ pub fn assert_clean_failure(o: &Output) -> String {
     assert!(err.lines().any(|l| l.starts_with("error:")), "{err}");
     assert!(!err.contains("panicked"), "{err}");
     err
+}
+
+/// A run that stopped unstable: exit code 3, no panic, and `summary.json` in `out` saying
+/// so. Returns stderr and the summary.
+pub fn assert_unstable(o: &Output, out: &Path) -> (String, serde_json::Value) {
+    let err = stderr(o);
+    assert_eq!(o.status.code(), Some(3), "expected exit 3, got {:?}: {err}", o.status);
+    assert!(!err.contains("panicked"), "{err}");
+    let s = summary(out);
+    assert_eq!(s["ending"].as_str(), Some("unstable"), "{s}");
+    (err, s)
 }
 
 pub fn tmp_dir(name: &str) -> PathBuf {

@@ -140,33 +140,7 @@ mod tests {
     /// The closed-form inverses agree with the trait's generic bisection.
     #[test]
     fn inverses_match_bisection() {
-        struct Generic(MuI);
-        impl LocalRheology for Generic {
-            fn control_name(&self) -> &'static str {
-                "i"
-            }
-            fn control_number(&self, s: &LocalState) -> f64 {
-                self.0.control_number(s)
-            }
-            fn friction(&self, x: f64) -> f64 {
-                self.0.friction(x)
-            }
-            fn packing(&self, x: f64) -> f64 {
-                self.0.packing(x)
-            }
-        }
-        let m = MuI::default();
-        let g = Generic(m.clone());
-        for phi in [0.05, 0.3, 0.55, 0.6] {
-            let x = m.control_of_packing(phi);
-            assert_relative_eq!(x, g.control_of_packing(phi), max_relative = 1e-10);
-            assert_relative_eq!(m.packing(x), phi, max_relative = 1e-12);
-            let p = m.pressure_at(&state(5.0, 0.0), x);
-            assert_relative_eq!(p, g.pressure_at(&state(5.0, 0.0), x), max_relative = 1e-10);
-            assert_relative_eq!(m.control_number(&state(5.0, p)), x, max_relative = 1e-12);
-        }
-        assert_eq!(m.control_of_packing(0.61), 0.0);
-        assert_eq!(m.pressure_at(&state(0.0, 0.0), 0.1), 0.0);
+        crate::testing::assert_inverses_match_bisection(&MuI::default(), &state(5.0, 0.0), &[0.05, 0.3, 0.55, 0.6]);
     }
 
     #[test]
@@ -198,13 +172,7 @@ mod tests {
 
         #[test]
         fn batch_equals_scalar(x in proptest::collection::vec(0.0f64..50.0, 1..64)) {
-            let m = MuI::default();
-            let (mut mu, mut phi) = (vec![0.0; x.len()], vec![0.0; x.len()]);
-            m.eval_batch(&x, &mut mu, &mut phi);
-            for i in 0..x.len() {
-                prop_assert_eq!(mu[i], m.friction(x[i]));
-                prop_assert_eq!(phi[i], m.packing(x[i]));
-            }
+            crate::testing::assert_batch_equals_scalar(&MuI::default(), &x);
         }
     }
 }

@@ -171,23 +171,6 @@ mod tests {
     /// The closed-form inverses agree with the trait's generic bisection.
     #[test]
     fn inverses_match_bisection() {
-        struct Generic(MuK);
-        impl LocalRheology for Generic {
-            fn control_name(&self) -> &'static str {
-                "k"
-            }
-            fn control_number(&self, s: &LocalState) -> f64 {
-                self.0.control_number(s)
-            }
-            fn friction(&self, x: f64) -> f64 {
-                self.0.friction(x)
-            }
-            fn packing(&self, x: f64) -> f64 {
-                self.0.packing(x)
-            }
-        }
-        let m = MuK::default();
-        let g = Generic(m.clone());
         let s = LocalState {
             shear_rate: 3.0,
             pressure: 0.0,
@@ -195,16 +178,7 @@ mod tests {
             particle_density: 2500.0,
             fluid_viscosity: 1e-3,
         };
-        for phi in [0.05, 0.3, 0.55, 0.61] {
-            let x = LocalRheology::control_of_packing(&m, phi);
-            assert_relative_eq!(x, g.control_of_packing(phi), max_relative = 1e-10);
-            assert_relative_eq!(m.packing(x), phi, max_relative = 1e-12);
-            let p = m.pressure_at(&s, x);
-            assert_relative_eq!(p, g.pressure_at(&s, x), max_relative = 1e-10);
-            assert_relative_eq!(m.control_number(&LocalState { pressure: p, ..s }), x, max_relative = 1e-12);
-        }
-        assert_eq!(LocalRheology::control_of_packing(&m, 0.7), 0.0);
-        assert_eq!(m.pressure_at(&LocalState { shear_rate: 0.0, ..s }, 0.1), 0.0);
+        crate::testing::assert_inverses_match_bisection(&MuK::default(), &s, &[0.05, 0.3, 0.55, 0.61]);
     }
 
     #[test]
@@ -235,13 +209,7 @@ mod tests {
 
         #[test]
         fn batch_equals_scalar(x in proptest::collection::vec(0.0f64..50.0, 1..64)) {
-            let m = MuK::default();
-            let (mut mu, mut phi) = (vec![0.0; x.len()], vec![0.0; x.len()]);
-            m.eval_batch(&x, &mut mu, &mut phi);
-            for i in 0..x.len() {
-                prop_assert_eq!(mu[i], m.friction(x[i]));
-                prop_assert_eq!(phi[i], m.packing(x[i]));
-            }
+            crate::testing::assert_batch_equals_scalar(&MuK::default(), &x);
         }
     }
 }

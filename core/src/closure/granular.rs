@@ -145,30 +145,27 @@ pub struct JohnsonJacksonElastic {
 }
 
 impl JohnsonJacksonElastic {
-    /// p_el(phi) (Pa)
+    /// `law(phi - phi_rlp, phi_max - phi)` between the two packings, 0 below phi_rlp and
+    /// +inf at or above phi_max: the range of the pressure and of its derivative.
     #[inline]
-    pub fn pressure(&self, phi: f64) -> f64 {
+    fn between_packings(&self, phi: f64, law: impl FnOnce(f64, f64) -> f64) -> f64 {
         if phi < self.phi_rlp {
             0.0
         } else if phi >= self.phi_max {
             f64::INFINITY
         } else {
-            let a = phi - self.phi_rlp;
-            self.p0 * a * a * a / (self.phi_max - phi).powi(5)
+            law(phi - self.phi_rlp, self.phi_max - phi)
         }
+    }
+    /// p_el(phi) (Pa)
+    #[inline]
+    pub fn pressure(&self, phi: f64) -> f64 {
+        self.between_packings(phi, |a, b| self.p0 * a * a * a / b.powi(5))
     }
     /// dp_el/dphi = P0 (phi-phi_rlp)^2 / (phi_max-phi)^6 [3 (phi_max-phi) + 5 (phi-phi_rlp)] (Pa)
     #[inline]
     pub fn derivative(&self, phi: f64) -> f64 {
-        if phi < self.phi_rlp {
-            0.0
-        } else if phi >= self.phi_max {
-            f64::INFINITY
-        } else {
-            let a = phi - self.phi_rlp;
-            let b = self.phi_max - phi;
-            self.p0 * a * a * (3.0 * b + 5.0 * a) / b.powi(6)
-        }
+        self.between_packings(phi, |a, b| self.p0 * a * a * (3.0 * b + 5.0 * a) / b.powi(6))
     }
 }
 
@@ -224,6 +221,41 @@ pub trait KineticTheory: Send + Sync {
     fn drag_dissipation_factor(&self, cd_inf: f64, cd: f64) -> f64;
     /// Whether the saltation correction is on.
     fn saltation_enabled(&self) -> bool;
+
+    /// Kinetic-collisional pressure p_kin = rho_p F1 T (Pa) of the coefficients `c` at
+    /// temperature `t` (m^2/s^2) for grains of density `rho_p`, Chassagne et al. 2023
+    /// eq 2.19.
+    fn kinetic_pressure(&self, c: &KineticCoefficients, rho_p: f64, t: f64) -> f64;
+    /// Kinetic shear viscosity eta_kin = rho_p d F2 sqrt(T) (Pa s) of the coefficients `c`
+    /// for grains of density `rho_p` and diameter `d` at sqrt(T) = `sqrt_t`, Chassagne et
+    /// al. 2023 eq 2.20.
+    fn shear_viscosity(&self, c: &KineticCoefficients, rho_p: f64, d: f64, sqrt_t: f64) -> f64;
+    /// F2 of a sheared state, eq 2.20 read backwards with eta_kin = tau / gamma_dot: the
+    /// shear stress `tau` (Pa) at shear rate `gamma_dot` (1/s) and temperature `t` gives
+    /// tau / (rho_p d sqrt(T) gamma_dot), the measured dimensionless viscosity.
+    fn viscosity_coefficient(&self, tau: f64, gamma_dot: f64, rho_p: f64, d: f64, t: f64) -> f64;
+    /// Conductivity kappa = rho_p d F3 sqrt(T) (kg m^-1 s^-1) of the heat flux
+    /// q = -kappa dT/dz, Chassagne et al. 2023 eqs 2.18 and 2.21.
+    fn conductivity(&self, c: &KineticCoefficients, rho_p: f64, d: f64, sqrt_t: f64) -> f64;
+    /// Collisional dissipation Gamma = rho_p / d F4 T^{3/2} (W/m^3) at temperature `t`,
+    /// Chassagne et al. 2023 eq 2.22 (F4' of table 1 with the effective restitution).
+    fn dissipation(&self, c: &KineticCoefficients, rho_p: f64, d: f64, t: f64) -> f64;
+    /// Gamma / T = rho_p / d F4 sqrt(T) (kg m^-3 s^-1) of eq 2.22: the sink that an
+    /// implicit temperature step multiplies by the new T.
+    fn dissipation_per_temperature(&self, c: &KineticCoefficients, rho_p: f64, d: f64, sqrt_t: f64) -> f64;
+    /// Radial distribution g0 of a measured pressure `p` (Pa) at `phi` and temperature
+    /// `t`, eq 2.19 read backwards (Chassagne et al. 2023 eq 3.1, which takes the total
+    /// pressure for p_kin): the g0 at which the closure's F1, with its own restitution,
+    /// equals p / (rho_p T). `c` are the closure's coefficients at `phi`.
+    fn radial_distribution_of_pressure(&self, c: &KineticCoefficients, phi: f64, p: f64, rho_p: f64, t: f64) -> f64;
+    /// Regressor x(phi) = phi^2 / (phi_max - phi)^{3/2} of the friction term of
+    /// Chassagne et al. 2023 eq 3.2, g0 = g0_CS + a x, with the closure's phi_max: the
+    /// variable against which a measured g0 - g0_CS gives the coefficient a(mu_p).
+    fn radial_distribution_regressor(&self, phi: f64) -> f64;
+    /// Saltation input (eq 3.6) of a cell of volume fraction `phi`, temperature `t` and
+    /// drag friction `beta` (kg m^-3 s^-1), with K of eq 2.10 from the drag force of
+    /// eq 2.9, beta = phi (1 - phi) K.
+    fn saltation_input(&self, phi: f64, t: f64, beta: f64, rho_p: f64, d: f64) -> SaltationInput;
 
     /// [`KineticTheory::drag_dissipation_factor`] over a slice of C_D. The Eulerian solver
     /// calls it once per temperature step.

@@ -141,7 +141,7 @@ pub const MAX_PARTICLES: f64 = 1.0e7;
 /// Longest side of the box in grain diameters (bounds the neighbour grid).
 pub const MAX_SIDE_DIAMETERS: f64 = 1.0e4;
 /// Packing of the released lattice of `initial = "bed"` (cubic, spacing 1.1 d).
-const LATTICE_PHI: f64 = std::f64::consts::PI / 6.0 / (1.1 * 1.1 * 1.1);
+const LATTICE_PHI: f64 = crate::grain::sphere_volume(1.0) / (1.1 * 1.1 * 1.1);
 /// Largest `size_dispersion`: the largest grain, (1 + s) d, stays below the released
 /// lattice's spacing of 1.1 d.
 pub const MAX_SIZE_DISPERSION: f64 = 0.09;
@@ -410,7 +410,7 @@ impl LagrangianSettings {
                 "draws the diameters of a deposited bed only; use initial = \"bed\" or size_dispersion = 0",
             ));
         }
-        let volume = std::f64::consts::PI * c.d.powi(3) / 6.0;
+        let volume = crate::grain::sphere_volume(c.d);
         let count = |height: f64, phi: f64| phi * length * width * height / volume;
         let mobile = match self.initial {
             Initial::Bed => {

@@ -281,17 +281,8 @@ impl FluidColumn {
         }
         let mut it = 0;
         loop {
-            self.evaluate_turbulence(closures.turbulence)?;
-            self.update_side_walls(closures.wall_friction);
-            // nu_t <- nu_t(u), keeping the previous one
-            self.eddy.take_candidate();
-            self.update_coefficients();
-            self.update_stresses();
-            if self.residual <= tol {
-                return Ok(SteadyReport { iterations: it, residual: self.residual });
-            }
-            if it == max_iter {
-                return Err(ColumnError::NotConverged { iterations: it, residual: self.residual, tol });
+            if let Some(done) = self.steady_check(closures, None, tol, it, max_iter)? {
+                return Ok(done);
             }
             self.eddy.relax_from_previous();
             self.update_coefficients();
@@ -299,6 +290,36 @@ impl FluidColumn {
             self.update_faces();
             it += 1;
         }
+    }
+
+    /// The head of every steady iteration after `it` solves: nu_t of the current state
+    /// (the previous one kept for relaxation), the side-wall friction, the coefficients and
+    /// the stresses, then the verdict on the momentum residual, or on the larger of it and
+    /// `change` when the caller measures a change of its own. `Some` report when it is
+    /// <= `tol`, [`ColumnError::NotConverged`] after `max_iter` solves, `None` to go on.
+    fn steady_check(
+        &mut self,
+        closures: &Closures<'_>,
+        change: Option<f64>,
+        tol: f64,
+        it: usize,
+        max_iter: usize,
+    ) -> Result<Option<SteadyReport>, ColumnError> {
+        self.evaluate_turbulence(closures.turbulence)?;
+        self.update_side_walls(closures.wall_friction);
+        // nu_t <- nu_t(u), keeping the previous one
+        self.eddy.take_candidate();
+        self.update_coefficients();
+        self.update_stresses();
+        // without a change of the caller's the residual alone decides, and a NaN never converges
+        let worst = change.map_or(self.residual, |c| self.residual.max(c));
+        if worst <= tol {
+            return Ok(Some(SteadyReport { iterations: it, residual: worst }));
+        }
+        if it == max_iter {
+            return Err(ColumnError::NotConverged { iterations: it, residual: worst, tol });
+        }
+        Ok(None)
     }
 
     /// Steady state with a two-equation closure: every iteration solves the momentum to
@@ -317,17 +338,8 @@ impl FluidColumn {
         let mut change = f64::INFINITY;
         let mut it = 0;
         loop {
-            self.evaluate_turbulence(closures.turbulence)?;
-            self.update_side_walls(closures.wall_friction);
-            self.eddy.take_candidate();
-            self.update_coefficients();
-            self.update_stresses();
-            let worst = self.residual.max(change);
-            if worst <= tol {
-                return Ok(SteadyReport { iterations: it, residual: worst });
-            }
-            if it == max_iter {
-                return Err(ColumnError::NotConverged { iterations: it, residual: worst, tol });
+            if let Some(done) = self.steady_check(closures, Some(change), tol, it, max_iter)? {
+                return Ok(done);
             }
             self.solve_linear(f64::INFINITY, self.time)?;
             self.update_faces();

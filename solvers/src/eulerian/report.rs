@@ -84,7 +84,7 @@ impl Eulerian<'_> {
                     let st = self.s.temp[i].max(0.0).sqrt();
                     let g = gamma[i];
                     let coulomb = if g == 0.0 { 0.0 } else { mu_s * co.pres[i].p_el * g.signum() };
-                    (c.rho_p * c.d * co.coef[i].f2 * st * g + coulomb) / p_p[i]
+                    (kt.shear_viscosity(&co.coef[i], c.rho_p, c.d, st) * g + coulomb) / p_p[i]
                 })
             }
         };
@@ -95,13 +95,7 @@ impl Eulerian<'_> {
         let temp = &self.s.temp[..n];
         let dtdz = output::profile_gradient(self.z(), temp);
         p.push("heat_flux", per_cell(&|i| -co.kappa[i] * dtdz[i]));
-        p.push(
-            "dissipation",
-            per_cell(&|i| {
-                let t = temp[i].max(0.0);
-                c.rho_p / c.d * co.coef[i].f4 * t * t.sqrt()
-            }),
-        );
+        p.push("dissipation", per_cell(&|i| kt.dissipation(&co.coef[i], c.rho_p, c.d, temp[i].max(0.0))));
         let cd_inf = self.m.drag.cd_inf();
         p.push(
             "drag_dissipation",

@@ -100,21 +100,21 @@ impl Eulerian<'_> {
             let f1p = if phi + DPHI < phi_max { (sc.coef_h[i].f1 - co.f1) / DPHI } else { co.f1 / phi.max(1e-12) };
             self.co.f1_slope[i] = f1p.max(0.0);
             let st = sc.salt[i].sqrt_t;
-            self.co.eta_kin[i] = c.rho_p * c.d * co.f2 * st;
-            self.co.kappa[i] = c.rho_p * c.d * co.f3 * st;
+            self.co.eta_kin[i] = kt.shear_viscosity(&co, c.rho_p, c.d, st);
+            self.co.kappa[i] = kt.conductivity(&co, c.rho_p, c.d, st);
         }
         for i in 0..n {
-            self.co.pres[i] = self.kinetic_pressure(elastic, i, self.s.temp[i].max(0.0));
+            self.co.pres[i] = self.kinetic_pressure(kt, elastic, i, self.s.temp[i].max(0.0));
         }
     }
 
     /// Particle pressure of cell `i` at temperature `t`, linearised in phi:
     /// p_el + rho_p F1 T with slope p_el' + rho_p T F1' (eqs 2.14, 2.19).
-    pub(super) fn kinetic_pressure(&self, elastic: &Elastic, i: usize, t: f64) -> Pressure {
+    pub(super) fn kinetic_pressure(&self, kt: &dyn KineticTheory, elastic: &Elastic, i: usize, t: f64) -> Pressure {
         let phi = self.s.phi[i].max(0.0);
         let p_el = elastic.pressure(phi);
         let a = elastic.derivative(phi) + self.c.rho_p * t * self.co.f1_slope[i];
-        let p = p_el + self.c.rho_p * self.co.coef[i].f1 * t;
+        let p = p_el + kt.kinetic_pressure(&self.co.coef[i], self.c.rho_p, t);
         Pressure { p, p_el, a, b: p - a * phi }
     }
 

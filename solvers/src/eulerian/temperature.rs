@@ -28,7 +28,7 @@ impl Eulerian<'_> {
             let phi = s.phi[i].max(0.0);
             let m = 1.5 * c.rho_p * phi.max(PHI_FLOOR) * dzi / dt;
             let st = s.temp[i].max(0.0).sqrt();
-            let sink = c.rho_p / c.d * co.coef[i].f4 * st + self.sc.c_j[i] * co.beta[i];
+            let sink = kt.dissipation_per_temperature(&co.coef[i], c.rho_p, c.d, st) + self.sc.c_j[i] * co.beta[i];
             let prod = co.eta_kin[i] * co.gamma_p[i] * co.gamma_p[i];
             t.lower[i] = 0.0;
             t.upper[i] = 0.0;
@@ -54,7 +54,7 @@ impl Eulerian<'_> {
         }
         // the phi step sees the new temperature
         for i in 0..n {
-            self.co.pres[i] = self.kinetic_pressure(&elastic, i, self.s.temp[i]);
+            self.co.pres[i] = self.kinetic_pressure(kt, &elastic, i, self.s.temp[i]);
         }
         Ok(())
     }

@@ -1,10 +1,10 @@
 //! Property and limit tests of the frictional-collisional closure (Chassagne et al. 2023
 //! table 1, appendices B-D).
 
-use super::super::kinetic::radial_distribution::carnahan_starling;
 use super::*;
 use approx::assert_relative_eq;
 use proptest::prelude::*;
+use saltus_core::grain::carnahan_starling;
 
 fn model() -> FrictionalCollisional {
     FrictionalCollisional::default()
@@ -357,4 +357,88 @@ fn toml_forms() {
     let cs = parse("g0 = { type = \"carnahan_starling\" }").unwrap();
     assert_eq!(cs.g0, RadialDistribution::CarnahanStarling {});
     assert!(parse("kinetic = 1").is_err());
+}
+
+/// Eqs 2.19-2.22 against the printed formulas of table 1 at one state of the proposed
+/// model, and the dilute elastic limits of the viscosity and the conductivity
+/// (Chapman-Enskog: 5 sqrt(pi)/96 and 75 sqrt(pi)/384 in rho_p d sqrt(T) units).
+#[test]
+fn kinetic_quantities_are_those_of_eqs_2_19_to_2_22() {
+    let (rho_p, d, t) = (2500.0, 6e-3, 4e-3f64);
+    let m = model();
+    let (phi, e) = (0.3, m.restitution);
+    let c = m.coefficients(phi, None);
+    let g0 = carnahan_starling(phi) + m.g0.coefficient_a(m.friction) * phi * phi / (m.phi_max - phi).powf(1.5);
+    let p = rho_p * phi * (1.0 + 2.0 * (1.0 + e) * phi * g0) * t;
+    assert_relative_eq!(m.kinetic_pressure(&c, rho_p, t), p, max_relative = 1e-14);
+    let e_eff = m.effective_restitution();
+    let gamma = 12.0 / std::f64::consts::PI.sqrt() * (1.0 - e_eff * e_eff) * phi * phi * g0 * rho_p / d * t.powf(1.5);
+    assert_relative_eq!(m.dissipation(&c, rho_p, d, t), gamma, max_relative = 1e-14);
+    assert_relative_eq!(m.dissipation_per_temperature(&c, rho_p, d, t.sqrt()) * t, gamma, max_relative = 1e-14);
+    assert_relative_eq!(m.shear_viscosity(&c, rho_p, d, t.sqrt()), rho_p * d * c.f2 * t.sqrt(), max_relative = 1e-15);
+    assert_relative_eq!(m.conductivity(&c, rho_p, d, t.sqrt()), rho_p * d * c.f3 * t.sqrt(), max_relative = 1e-15);
+    let elastic = FrictionalCollisional { restitution: 1.0, ..FrictionalCollisional::garzo_dufty_initial() };
+    let dilute = elastic.coefficients(0.0, None);
+    let scale = rho_p * d * t.sqrt();
+    let sqrt_pi = std::f64::consts::PI.sqrt();
+    assert_relative_eq!(
+        elastic.shear_viscosity(&dilute, rho_p, d, t.sqrt()),
+        5.0 * sqrt_pi / 96.0 * scale,
+        max_relative = 1e-14
+    );
+    assert_relative_eq!(
+        elastic.conductivity(&dilute, rho_p, d, t.sqrt()),
+        75.0 * sqrt_pi / 384.0 * scale,
+        max_relative = 1e-14
+    );
+    assert_eq!(elastic.dissipation(&dilute, rho_p, d, t), 0.0);
+}
+
+/// Eq 3.1: the g0 read from a pressure built with eq 2.19 at a given g0 is that g0, for
+/// the closure's own g0 and for one twice as large, in both models of table 1.
+#[test]
+fn radial_distribution_of_pressure_inverts_eq_2_19() {
+    let (rho_p, t) = (2650.0, 2e-3);
+    for m in [model(), FrictionalCollisional::garzo_dufty_initial()] {
+        let e = m.restitution;
+        for phi in [0.05, 0.2, 0.4, 0.55, 0.62] {
+            let c = m.coefficients(phi, None);
+            let own = m.radial_distribution_of_pressure(&c, phi, m.kinetic_pressure(&c, rho_p, t), rho_p, t);
+            assert_relative_eq!(own, c.g0, max_relative = 1e-12);
+            let g0 = 2.0 * c.g0;
+            let p = rho_p * phi * (1.0 + 2.0 * (1.0 + e) * phi * g0) * t;
+            assert_relative_eq!(m.radial_distribution_of_pressure(&c, phi, p, rho_p, t), g0, max_relative = 1e-12);
+        }
+    }
+}
+
+/// Eq 3.2 against its regressor gives back a(mu_p) of eq 3.3 (a0 = 0.58, a_max = 3.70,
+/// delta = 0.54) at every phi, and a = 0.58 for the initial model (eq 2.23).
+#[test]
+fn the_regressor_of_eq_3_2_gives_back_a() {
+    let a_eq33 = 0.58 + (3.70 - 0.58) * (0.4f64 / 0.54).tanh();
+    for (m, a) in [(model(), a_eq33), (FrictionalCollisional::garzo_dufty_initial(), 0.58)] {
+        for phi in [0.05, 0.2, 0.4, 0.55, 0.62] {
+            let x = m.radial_distribution_regressor(phi);
+            assert_relative_eq!(x, phi * phi / (0.635 - phi).powf(1.5), max_relative = 1e-15);
+            assert_relative_eq!((m.g0_at(phi) - carnahan_starling(phi)) / x, a, max_relative = 1e-10);
+        }
+    }
+}
+
+/// Eq 2.20 read backwards: the stress of the closure's viscosity at a shear rate gives
+/// back F2; eq 2.9 read backwards: beta = phi (1 - phi) K gives back K.
+#[test]
+fn the_viscosity_and_the_drag_inversions() {
+    let (rho_p, d, t, gamma_dot) = (2500.0, 3e-3, 1e-3f64, 40.0);
+    let m = model();
+    for phi in [0.1, 0.3, 0.5] {
+        let c = m.coefficients(phi, None);
+        let tau = m.shear_viscosity(&c, rho_p, d, t.sqrt()) * gamma_dot;
+        assert_relative_eq!(m.viscosity_coefficient(tau, gamma_dot, rho_p, d, t), c.f2, max_relative = 1e-14);
+        let k = 1.7e4;
+        let s = m.saltation_input(phi, t, phi * (1.0 - phi) * k, rho_p, d);
+        assert_relative_eq!(s.k_drag, k, max_relative = 1e-14);
+        assert_eq!((s.sqrt_t, s.particle_density, s.diameter), (t.sqrt(), rho_p, d));
+    }
 }

@@ -1,22 +1,10 @@
 //! Radial distribution function at contact g0(phi) (the `g0` table of
-//! `frictional_collisional`).
+//! `frictional_collisional`). The Carnahan-Starling g0 is
+//! [`saltus_core::grain::carnahan_starling`], shared with the solvers and the diagnostics.
 
+use saltus_core::grain::carnahan_starling;
 use saltus_core::Params;
 use serde::{Deserialize, Serialize};
-
-/// Carnahan & Starling (1969): g0 = (2 - phi) / (2 (1 - phi)^3).
-///
-/// * Source: Chassagne et al. 2023, text before eq 2.23.
-/// * g0(0) = 1; finite for phi < 1, `+inf` for phi >= 1 (its own divergence; it ignores
-///   `phi_max`, which is why the papers replace it in dense flows).
-#[inline]
-pub fn carnahan_starling(phi: f64) -> f64 {
-    if phi >= 1.0 {
-        return f64::INFINITY;
-    }
-    let q = 1.0 - phi;
-    (2.0 - phi) / (2.0 * q * q * q)
-}
 
 /// Chialvo & Sundaresan (2013) form: CS + a phi^2 / (phi_max - phi)^(3/2).
 ///
@@ -28,6 +16,14 @@ pub fn chialvo_sundaresan(phi: f64, phi_max: f64, a: f64) -> f64 {
         return f64::INFINITY;
     }
     carnahan_starling(phi) + a * phi * phi / (phi_max - phi).powf(1.5)
+}
+
+/// Regressor x = phi^2 / (phi_max - phi)^(3/2) of Chassagne et al. 2023 eq 3.2,
+/// g0 = g0_CS + a(mu_p) x: a measured g0 - g0_CS against it gives a(mu_p) (their
+/// figure 4b). `+inf` at phi = phi_max, NaN beyond (no packing there to fit).
+#[inline]
+pub fn friction_regressor(phi: f64, phi_max: f64) -> f64 {
+    phi * phi / (phi_max - phi).powf(1.5)
 }
 
 /// Friction-dependent coefficient a(mu_p) = a0 + (a_max - a0) tanh(mu_p / delta),

@@ -1,11 +1,13 @@
 //! Differences between a run's profiles and reference data, for the comparison table.
 //!
 //! The run's profile is interpolated linearly in z at each reference row inside the span of
-//! its cell centres; rows outside are skipped (no extrapolation). For particle-phase
+//! its cell centres, by the interpolation and RMS of [`saltus_solvers::bed_aligned`] (the
+//! bed-aligned metric's, here without a shift); rows outside are skipped (no
+//! extrapolation). For particle-phase
 //! columns (`u_p`, `theta_g`) a reference value of exactly 0 means "no grains, no data" (the
 //! DEM files write 0 above the granular layer) and the row is skipped.
 
-use saltus_solvers::Profiles;
+use saltus_solvers::{bed_aligned, Profiles};
 
 use crate::table::Table;
 
@@ -20,34 +22,16 @@ pub fn rms_difference(run: &Profiles, reference: &Table, name: &str) -> Option<(
     let (zr, fr) = (reference.get("z")?, reference.get(name)?);
     let particle = matches!(name, "u_p" | "theta_g");
     let (lo, hi) = (*zc.first()?, *zc.last()?);
-    let mut sum = 0.0;
-    let mut count = 0usize;
-    for (&z, &want) in zr.iter().zip(fr) {
-        if !(z >= lo && z <= hi && want.is_finite()) || (particle && want == 0.0) {
-            continue;
-        }
-        // first centre at or above z (exists: z <= hi)
-        let j = zc.partition_point(|&c| c < z).min(zc.len() - 1);
-        let got = if j == 0 {
-            f[0]
-        } else {
-            let t = (z - zc[j - 1]) / (zc[j] - zc[j - 1]);
-            f[j - 1] + t * (f[j] - f[j - 1])
-        };
-        if got.is_finite() {
-            sum += (got - want).powi(2);
-            count += 1;
-        }
-    }
-    (count > 0).then(|| ((sum / count as f64).sqrt(), count))
+    let inside = |z: f64, want: f64| z >= lo && z <= hi && !(particle && want == 0.0);
+    bed_aligned::rms(zc, f, zr, fr, 0.0, inside)
 }
 
-/// Columns of the bed-aligned metric of issue 12 (`saltus_solvers::bed_aligned`), written
+/// Columns of the bed-aligned metric (`saltus_solvers::bed_aligned`), written
 /// after the `rms_` columns when the reference data have a `phi` column with a packed bed:
 /// the shift of the run onto the data's bed surface (m), the RMS phi over the reference rows
 /// with phi > 0, the RMS of the run's `u_f` against the reference velocity (its `u_f`
 /// column, else its `u_p` column: the ACVP velocity of the Revil-Baudard data, which the
-/// issue's metric compares with the fluid velocity), and the run's velocity at the top cell.
+/// metric compares with the fluid velocity), and the run's velocity at the top cell.
 pub const ALIGNED: [&str; 4] = ["bed_shift", "aligned_rms_phi", "aligned_rms_u_f", "surface_u_f"];
 
 /// The [`ALIGNED`] values of `run` against the reference tables (each column from the first
@@ -57,7 +41,7 @@ pub fn aligned(run: &Profiles, reference: &[&Table]) -> Option<[Option<f64>; 4]>
     let (dz, dphi) = (phi_ref.get("z")?, phi_ref.get("phi")?);
     let u_ref = ["u_f", "u_p"].iter().find_map(|c| reference.iter().find_map(|t| Some((t.get("z")?, t.get(c)?))));
     let (z, phi, u) = (run.get("z")?, run.get("phi")?, run.get("u_f")?);
-    let a = saltus_solvers::bed_aligned::aligned(z, phi, u, dz, dphi, u_ref);
+    let a = bed_aligned::aligned(z, phi, u, dz, dphi, u_ref);
     let top = u.last().copied().filter(|v| v.is_finite());
     Some(match a {
         Some(a) => [Some(a.shift), Some(a.phi.0), a.u.map(|e| e.0), top],
