@@ -42,7 +42,7 @@ pub fn rms_difference(run: &Profiles, reference: &Table, name: &str) -> Option<(
     (count > 0).then(|| ((sum / count as f64).sqrt(), count))
 }
 
-/// Columns of the bed-aligned metric of issue 12 (`saltus_solvers::bed_aligned`), written
+/// Columns of the bed-aligned metric of the sheet flows (`saltus_solvers::bed_aligned`), written
 /// after the `rms_` columns when the reference data have a `phi` column with a packed bed:
 /// the shift of the run onto the data's bed surface (m), the RMS phi over the reference rows
 /// with phi > 0, the RMS of the run's `u_f` against the reference velocity (its `u_f`

@@ -1,4 +1,4 @@
-//! The bed-aligned comparison of a sheet-flow profile with measured profiles (issue 12),
+//! The bed-aligned comparison of a sheet-flow profile with measured profiles,
 //! one definition for the tests and the `saltus compare` table.
 //!
 //! A continuum model and an experiment rarely put the packed bed at the same level: the
@@ -76,7 +76,7 @@ pub fn rms(
     (count > 0).then(|| ((sum / count as f64).sqrt(), count))
 }
 
-/// The issue-12 metric of a run against the Revil-Baudard data: (shift (m), RMS phi over
+/// The bed-aligned metric of a run against the Revil-Baudard data: (shift (m), RMS phi over
 /// the data points with phi > 0, RMS velocity over every velocity point). `u` is the
 /// run's fluid velocity, compared with the measured (ACVP) velocity.
 pub struct Aligned {
