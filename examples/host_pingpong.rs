@@ -1,6 +1,5 @@
 //! Round trip of one cache line between two threads, to tell how closely the host placed
-//! the cores a two-thread run gets (`docs/benchmarks.md`, "Fixed ownership of the grains per
-//! thread"): about 100 ns when they share a cache closely, about 380 ns on the 2-vCPU host
+//! the cores a two-thread run gets (`docs/performance.md`): about 100 ns when they share a cache closely, about 380 ns on the 2-vCPU host
 //! of those measurements when they do not, and a two-thread DEM run is 40 % slower then.
 //!
 //!     cargo run --release --example host_pingpong [round trips, default 1000000]

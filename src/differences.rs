@@ -26,7 +26,7 @@ pub fn rms_difference(run: &Profiles, reference: &Table, name: &str) -> Option<(
     bed_aligned::rms(zc, f, zr, fr, 0.0, inside)
 }
 
-/// Columns of the bed-aligned metric (`saltus_solvers::bed_aligned`), written
+/// Columns of the bed-aligned metric of the sheet flows (`saltus_solvers::bed_aligned`), written
 /// after the `rms_` columns when the reference data have a `phi` column with a packed bed:
 /// the shift of the run onto the data's bed surface (m), the RMS phi over the reference rows
 /// with phi > 0, the RMS of the run's `u_f` against the reference velocity (its `u_f`

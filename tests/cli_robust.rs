@@ -1,4 +1,4 @@
-//! Regression tests of the fuzz findings of issue 14 item 5: each minimal scene, run
+//! Regression tests of the findings of the scene fuzzer (`examples/fuzz_scenes.rs`): each minimal scene, run
 //! through the built program, fails cleanly (exit 2 naming the key), stops as unstable
 //! with its cause (exit 3), or runs, and never panics, aborts or writes a non-finite
 //! number. Plus the ParaView series of a small DEM run, read back.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Independent check of the k-omega channel (docs/benchmarks.md, k-omega channel audit).
+"""Independent check of the k-omega channel (docs/notes/k_omega_channel.md).
 
 Steady solution of the low-Re k-omega of Cheng et al. table 1 (Wilcox's low-Re functions,
 eqs 21-29 with phi = 0) for the half channel at Re_tau = 587.19 in wall units (nu = u* = 1),

@@ -4,7 +4,7 @@
         [--mpm ../shared/data/mpm1948_recking2010/Meyer-Peter_Muller_1948_data.csv]
 
 RUNS_DIR holds one `saltus run` output folder per point, named `<series>_<nominal theta>`
-(e.g. `drw_0.1`, `nodrw_0.1`; docs/benchmarks.md "Figure 6 with 100 s of averaging" gives
+(e.g. `drw_0.1`, `nodrw_0.1`; docs/validation.md "Figure 6" gives
 the commands). For each point: qs* as the mean of block means of the `qs_star` column of
 `timeseries.csv` over the averaging window [t0, t1) (blocks of `--block` s, their standard
 error), and theta* the summary's `shields_turbulent` (the paper's Shields number from the
@@ -21,7 +21,7 @@ the difference between the two the drift. `--save FILE` writes the per-point tab
 (series, nominal theta, theta*, qs*, its standard error, blocks, theta, the late mean and
 its standard error) as CSV; `--table FILE` reads such a table instead of
 RUNS_DIR (pass `-` for RUNS_DIR; with both, a run folder replaces the table's row of its
-point), so that a sweep run over several sessions, or its
+point), so that a sweep run in several parts, or its
 committed table (`docs/figures/maurin2015_fig6_30d.csv`), redraws without the run folders.
 Needs numpy and matplotlib (the figure only).
 """

@@ -1,6 +1,6 @@
 //! Convergence study of the Eulerian solver on Chassagne et al. 2023 case 1: qs* and the
 //! profiles at 50-800 cells and three time-step controls, against a 1600-cell reference
-//! run, with wall time. Prints a markdown table (docs/benchmarks.md).
+//! run, with wall time. Prints a markdown table (docs/performance.md).
 //!
 //! `cargo run --release -p saltus-solvers --example convergence`
 

@@ -1,4 +1,4 @@
-//! Verification of the 1D column fluid solver (VERIFICATION.md benchmarks 1 and 2, drag
+//! Verification of the 1D column fluid solver (docs/verification.md, benchmarks 1 and 2, drag
 //! coupling, bed case, error paths). Run with `cargo test -p saltus-solvers --release`.
 
 use std::path::Path;

@@ -1,5 +1,5 @@
 //! Verification of the Eulerian two-fluid solver against analytical solutions
-//! (VERIFICATION.md benchmarks 1, 5, 6), conservation, and the Chassagne et al. 2023
+//! (docs/verification.md, benchmarks 1, 5, 6), conservation, and the Chassagne et al. 2023
 //! reference case. Run with `cargo test -p saltus-solvers --release --test eulerian`.
 
 use std::path::Path;
@@ -170,7 +170,7 @@ fn inertial_number_of(mu: f64) -> f64 {
     I0 * (mu - MU_S).max(0.0) / (MU_2 - mu)
 }
 
-/// Benchmark 6 (VERIFICATION.md), the Bagnold profile of a dense mu(I) layer without fluid:
+/// Benchmark 6 (docs/verification.md), the Bagnold profile of a dense mu(I) layer without fluid:
 /// mu(I) = tan(alpha), phi = phi(I) uniform,
 /// u(z) = (2 I / (3 d)) sqrt(phi g cos) [H^1.5 - (H - z)^1.5].
 fn bagnold(z: f64) -> f64 {
@@ -266,7 +266,7 @@ fn dry_mu_i_incline_bagnold_profile() {
     assert!(fine < coarse / 3.0, "not second order: {coarse} -> {fine}");
 }
 
-/// VERIFICATION.md benchmark 6: the Bagnold profile within 1 % at 100 cells across the
+/// docs/verification.md, benchmark 6: the Bagnold profile within 1 % at 100 cells across the
 /// layer (measured 0.64 %; the rest is the fluid, which the formula neglects: buoyancy,
 /// entrained air and the stress of the air above shift I by ~0.4 %).
 #[test]

@@ -1,6 +1,6 @@
 //! Verification of the two-phase low-Reynolds k-omega closure (Cheng et al. section 2.3)
 //! in the Eulerian column solver: the clear-water channel at Re_tau = 587.19 against the
-//! DNS of Moser, Kim & Mansour 1999 (VERIFICATION.md benchmark 2; these tests read
+//! DNS of Moser, Kim & Mansour 1999 (docs/verification.md, benchmark 2; these tests read
 //! `../shared/data/mkm1999_chan590`), and the Revil-Baudard et al. 2015 sheet flow against
 //! its ACVP profiles (`../shared/data/revil_baudard2015_sheetflow`, read by the ignored
 //! tests). Run with `cargo test -p saltus-solvers --release --test k_omega`; the sheet-flow
@@ -134,7 +134,7 @@ fn channel_metrics(m: &Eulerian<'_>) -> Option<ChannelMetrics> {
 /// The low-Re k-omega of Cheng table 1 (Wilcox's low-Re functions) does NOT meet the
 /// issue's 3 % on U+ once grid-converged: it is 9.5 % low at y+ = 30 (too large an eddy
 /// viscosity in the buffer layer, Re_t ~ 4-10) and 5.4 % low at the centreline. An
-/// independent solver of the same equations (docs/benchmarks.md, k-omega channel audit)
+/// independent solver of the same equations (docs/notes/k_omega_channel.md)
 /// gives the same profile to 0.4 %. The U+ gates are therefore the model's accuracy,
 /// grid-independent and stated as such: 11 % over 30 <= y+ <= 0.3 Re_tau and 6.5 % at the
 /// centreline (documented errors plus ~1.5 % margin), not a pass by discretisation error.
@@ -210,7 +210,7 @@ fn huge_time_steps_keep_k_and_omega_positive() {
     }
 }
 
-/// Grid study of the channel (printed, for docs/benchmarks.md): U+ against the DNS at a
+/// Grid study of the channel (printed; docs/notes/k_omega_channel.md): U+ against the DNS at a
 /// few y+, the worst error over 30 <= y+ <= 0.3 Re_tau, the centreline and the k+ peak, on
 /// uniform grids from Cheng's 168 cells to 2560 and on geometric grids (domain.stretching).
 /// Each run must reach steady state.
@@ -307,7 +307,7 @@ fn packed_bed_nu_t(m: &Eulerian<'_>) -> (f64, usize) {
     worst
 }
 
-/// Start-up of k-omega over a packed bed (issue 12): the Revil-Baudard k-omega scene on a
+/// Start-up of k-omega over a packed bed: the Revil-Baudard k-omega scene on a
 /// fine grid (448 cells, 0.375 mm) starts with nu_t <= 1e-3 nu in the packed bed (before:
 /// the uniform log-layer state, nu_t = 5.9e-4 m^2/s = 590 nu, there) and keeps it so at
 /// steady state (measured 5e-14 m^2/s).
@@ -346,7 +346,7 @@ fn sheet_flow_rms(m: &Eulerian<'_>) -> Option<(f64, f64, f64)> {
     Some((rms(m.u_f(), &u), rms(m.u_p(), &u), rms(m.phi(), &with_phi)))
 }
 
-/// The issue-12 metric ([`saltus_solvers::bed_aligned`]) against the data files: (shift (m),
+/// The bed-aligned metric ([`saltus_solvers::bed_aligned`]) against the data files: (shift (m),
 /// RMS u_f over the 39 ACVP points, RMS phi over the 62 points with phi > 0).
 fn aligned_rms(m: &Eulerian<'_>) -> Option<(f64, f64, f64)> {
     let dir = root().join("../shared/data/revil_baudard2015_sheetflow");
@@ -360,7 +360,7 @@ fn aligned_rms(m: &Eulerian<'_>) -> Option<(f64, f64, f64)> {
 
 /// The Revil-Baudard sheet flow under the three turbulence closures of
 /// compare_turbulence.toml and the k-omega scenes (mu(I) and kinetic theory): RMS errors of
-/// u and phi against the data and wall times, printed for docs/benchmarks.md. Each run
+/// u and phi against the data and wall times, printed (docs/notes/k_omega_drag_damping.md). Each run
 /// must end without breakdown and conserve the sediment mass.
 #[test]
 #[ignore]
@@ -419,12 +419,12 @@ fn stretching_is_range_checked_and_refines_the_wall() {
     assert!(dz.windows(2).all(|w| (w[1] / w[0] - 1.1).abs() < 1e-9));
 }
 
-/// Issue 12 item 3, the best closure set on the Revil-Baudard mobile bed with turbulent
+/// The best closure set on the Revil-Baudard mobile bed with turbulent
 /// suspension (`mobile_bed_kinetic_mixing_length.toml`: kinetic theory, mixing length
-/// kappa 0.225, `schmidt` drift): under the issue's metric (bed surfaces aligned) it must
+/// kappa 0.225, `schmidt` drift): under the bed-aligned metric it must
 /// be ahead of the peer's better run on both, RMS fluid velocity <= 0.05 m/s and RMS phi
 /// <= 0.025 (the target; measured 0.039 m/s and 0.0043, steady after 457 steps,
-/// docs/benchmarks.md), with sediment in suspension above the sheet (phi > 1e-4
+/// docs/validation.md), with sediment in suspension above the sheet (phi > 1e-4
 /// 2 cm above the bed surface, where the data have 0.02-0.01) and the mass conserved.
 /// end_time 300 s only caps the run: the scene reaches its steady ending well before.
 #[test]

@@ -115,7 +115,7 @@ fn elastic_frictionless_gas_conserves_energy() {
 
 #[test]
 fn single_sphere_settles_at_the_dallavalle_terminal_velocity() {
-    // VERIFICATION.md benchmark 4: w = 0.53743 m/s for 6 mm glass in water
+    // docs/verification.md, benchmark 4: w = 0.53743 m/s for 6 mm glass in water
     let s = scene("verification/dem_settling.toml", &[]);
     let mut m = model(&s);
     run_to_end(&mut m);
@@ -148,7 +148,7 @@ fn haff(grains: usize, t0: f64) -> Haff {
 
 #[test]
 fn homogeneous_cooling_follows_haff_with_the_kinetic_theory_rate() {
-    // VERIFICATION.md benchmark 7: T = T0 / (1 + t/tau)^2 with the dissipation F4 of the
+    // docs/verification.md, benchmark 7: T = T0 / (1 + t/tau)^2 with the dissipation F4 of the
     // closure library (Garzo-Dufty, Carnahan-Starling g0); the first cross-check between
     // the DEM and the kinetic theory of the Eulerian solver. Fit over t in [0, 4 tau]:
     // 1/sqrt(T) is linear in t with slope 1/(tau sqrt(T0)); tau within 8 % of the theory

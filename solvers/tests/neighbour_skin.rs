@@ -1,4 +1,4 @@
-//! The adapted neighbour skin (issue 13 item 4) in a coupled run: the skin moves, and the
+//! The adapted neighbour skin in a coupled run: the skin moves, and the
 //! run stays bit-identical on one and two threads and for a seed.
 
 mod common;

@@ -1,5 +1,5 @@
 //! Turbulent suspension in the Eulerian solver through the mean-field face of the
-//! fluctuation closures: the Rouse profile (VERIFICATION.md benchmark 3), the Ito form of
+//! fluctuation closures: the Rouse profile (docs/verification.md, benchmark 3), the Ito form of
 //! the drift against its own analytic profile, and Cheng et al.'s dilute channels (section
 //! 3.1, table 2). Run with `cargo test -p saltus-solvers --release --test suspension`.
 
@@ -159,7 +159,7 @@ fn dilute_settling_reaches_the_terminal_velocity_of_the_drag_law() {
     assert!((w / last - 1.0).abs() < 1e-9, "successive settling velocities {last} and {w} m/s");
 }
 
-/// Issue 12 item 1: the four Revil-Baudard mobile-bed scenes with turbulent suspension
+/// The four Revil-Baudard mobile-bed scenes with turbulent suspension
 /// (`schmidt` drift, Chassagne eqs 4.3-4.4; kinetic theory or mu(I), mixing length or
 /// k-omega) reach the steady criterion of the scene (relative rates below 1e-6 /s for 20
 /// steps) before end_time, with the sediment volume conserved to round-off and grains in
@@ -246,12 +246,12 @@ fn grains_in_the_rouse_range(rel: &str) -> f64 {
     s.solver.lagrangian.particles.expect("a particle count") as f64 * inside / total
 }
 
-/// Issue 12 item 4: the DEM face of `eim` on Cheng's two dilute channels. Kiger & Pan's
+/// The DEM face of `eim` on Cheng's two dilute channels. Kiger & Pan's
 /// grains (w_s = 2.24 cm/s) rest at d/2 = 97.5 um, z+ = 2.8, where the wall cell gives
 /// D = 0.012 nu: the steady state holds less than one of the 476 grains in the Rouse fit
 /// range (so the DEM has no Rouse number to give; the runs: no grain rises 6 um off its
 /// contact). NS1's (d/2 = 115 um, z+ = 4.8, the second cell, D = 1.6 nu) put more than 10
-/// of the 803 there, enough for the DEM to fit a Rouse number (docs/benchmarks.md).
+/// of the 803 there, enough for the DEM to fit a Rouse number (docs/notes/kiger_pan_rouse_number.md).
 #[test]
 fn the_dem_face_suspends_nothing_in_kiger_pan_and_enough_in_ns1() {
     let kiger_pan = grains_in_the_rouse_range("cases/cheng/dilute_kiger_pan.toml");

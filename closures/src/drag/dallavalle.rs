@@ -59,7 +59,7 @@ mod tests {
     use approx::assert_relative_eq;
     use proptest::prelude::*;
 
-    /// VERIFICATION.md 4: terminal velocity, exact root of
+    /// docs/verification.md, benchmark 4: terminal velocity, exact root of
     /// 0.4 w^2 + 24.4 nu w / d = (4/3)(s-1) g d.
     fn terminal_velocity(d: f64, s: f64, nu: f64) -> f64 {
         // Solve the force balance with the drag law itself (bisection), not the closed form.

@@ -45,7 +45,7 @@ use saltus_core::DriftForm;
 /// the flux -d(D phi)/dz (`ito`), not -D dphi/dz (`gradient`, Chassagne eq 4.4, the
 /// default): a particle leaves a strongly turbulent region faster than it enters it, and
 /// collects where D is small (near a wall). In Cheng's dilute channel (k-omega, C0 = 3) the
-/// two forms give Rouse numbers of about 1.06 and 0.58 (docs/benchmarks.md).
+/// two forms give Rouse numbers of about 1.06 and 0.58 (docs/notes/kiger_pan_rouse_number.md).
 ///
 /// Decisions:
 /// * Random numbers: three standard normals (x, y, z) then one standard exponential E

@@ -53,7 +53,7 @@ impl MeanField {
 
 #[cfg(test)]
 pub(crate) mod sim {
-    //! Shared helper of the diffusivity tests: a tracer random walk driven by a model's
+    //! What the diffusivity tests share: a tracer random walk driven by a model's
     //! own draws and durations.
 
     use saltus_core::rng::{stream, Rng};

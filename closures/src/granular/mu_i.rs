@@ -152,7 +152,7 @@ mod tests {
         assert!(MuI::default().validate().is_ok());
     }
 
-    /// VERIFICATION.md 6: on an incline mu(I) = tan a gives I = I0 (tan a - mu_s)/(mu_2 - tan a).
+    /// docs/verification.md, benchmark 6: on an incline mu(I) = tan a gives I = I0 (tan a - mu_s)/(mu_2 - tan a).
     #[test]
     fn inverse_on_incline() {
         let m = MuI::default();

@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 /// * Valid range: `exponent` in [0, 10]; phi in [0, 1) (diverges as phi -> 1); C_D is
 ///   evaluated at the interstitial Re_p (the papers' convention). With the suspension's
 ///   buoyancy, the hindered slip then solves (3/4) C_D(Re) u_r^2 = (s-1) g d (1-phi)^(1+zeta)
-///   (VERIFICATION.md benchmark 5).
+///   (docs/verification.md, benchmark 5).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
 #[describe(

@@ -93,7 +93,7 @@ pub enum KOmegaWall {
 ///   3-5, lambda -> 0.01 and the drag damping (12-18 /s) holds k down; the Reynolds stress in
 ///   the sheet is 0.03-0.5 u*^2 against 0.9 measured and the surface velocity 1.43 m/s
 ///   against 0.87. The response is steep (mu(I) scene: C_s = 0.2, 0.25, 0.3, 0.5 give 0.63,
-///   0.82, 0.99, 1.27 m/s), docs/benchmarks.md. The same C_s holds for every scene; it only
+///   0.82, 0.99, 1.27 m/s), docs/notes/k_omega_drag_damping.md. The same C_s holds for every scene; it only
 ///   acts where phi > 0 and the particles do not follow the eddies (St not small).
 /// * Initial state: outside the bed the log-layer equilibrium of the forcing (uniform); in
 ///   the bed (weight Gamma of eq 32) k = 0 and omega = omega_bed, the state the in-bed

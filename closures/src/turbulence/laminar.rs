@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 /// l_m = 0, hence nu_t = l_m^2 |du/dz| = 0 and R_xz = 0.
 ///
 /// * Source: the clear-fluid limit of Chassagne et al. 2023 eq 2.7 (nu_t = 0); used by the
-///   laminar benchmarks of VERIFICATION.md (Couette, laminar open channel).
+///   laminar benchmarks of docs/verification.md (Couette, laminar open channel).
 /// * Defaults: none (the model has no parameter).
 /// * Valid range: any laminar flow; for turbulent flow choose `mixing_length`.
 /// * Decision: the model `provides` no field ([`Needs::NONE`]), not an identically zero eddy

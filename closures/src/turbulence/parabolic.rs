@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 /// nu_t = kappa u* z (1 - z/h) ([`Parabolic::at`]), the parabola of the Rouse profile.
 ///
 /// * Source: the eddy viscosity of Rouse (1937) behind Cheng, Chauchat, Hsu & Calantoni
-///   eq 38 (the Rouse profile) and VERIFICATION.md benchmark 3; the product of the linear
+///   eq 38 (the Rouse profile) and docs/verification.md, benchmark 3; the product of the linear
 ///   stress and the log-law shear rate u*/(kappa z).
 /// * Defaults: `kappa = 0.41`, `friction_velocity = 0.05`, `depth = 0.1` (the scales of
 ///   `cases/verification/rouse_parabolic.toml`; a scene of another flow gives its own).
@@ -20,7 +20,7 @@ use serde::{Deserialize, Serialize};
 ///   parabola, not the mixing length), `depth` > 0 (m) measured from the bottom of the
 ///   column (z = 0), `kappa` in (0, 1]. The parabola holds where the flow is the uniform
 ///   channel of that u* and h and nu_t >> nu (z+ >> 10): a verification closure for the
-///   Rouse balance (VERIFICATION.md benchmark 3), not a model of a developing flow.
+///   Rouse balance (docs/verification.md, benchmark 3), not a model of a developing flow.
 ///
 /// Decisions:
 /// * Through the mixing length, not prescribed, so that nu_t = l_m^2 |du/dz| as for every
@@ -31,7 +31,7 @@ use serde::{Deserialize, Serialize};
 #[serde(deny_unknown_fields, default)]
 #[describe(
     name = "parabolic",
-    source = "Rouse 1937 (Cheng et al. eq 38); VERIFICATION.md benchmark 3",
+    source = "Rouse 1937 (Cheng et al. eq 38); docs/verification.md, benchmark 3",
     equation = "nu_t = l^2 |du/dz|, l = kappa z sqrt(1 - z/h) (kappa u* z (1 - z/h) in a uniform channel)"
 )]
 pub struct Parabolic {

@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 ///
 /// * Source: Fry et al. 2024 eq 30 (and their figure 12 / table II / figure 14);
 ///   Krieger & Dougherty 1959, Trans. Soc. Rheol. 3, 137-152. Eq 30 prints the exponent
-///   -3/2 phi_m: a typo (VERIFICATION.md); the paper's figures and fits, and Krieger &
+///   -3/2 phi_m: a typo (docs/verification.md); the paper's figures and fits, and Krieger &
 ///   Dougherty, use the intrinsic viscosity \[eta\] = 5/2 of spheres.
 /// * Defaults: `phi_m = 0.62` (Fry et al. eq 30; their fits give 0.62 +- 0.02),
 ///   `intrinsic = 2.5`.

@@ -54,7 +54,7 @@
 //!   cell. The plain half-cell difference (u_0 - u_w)/(dz/2) is only first-order at the
 //!   wall and shifts the laminar open-channel profile by G dz^2 / (8 mu); with the
 //!   quadratic one the scheme is exact at the cell centres for the quadratic laminar
-//!   solution (VERIFICATION.md benchmark 1) as well as for the linear Couette one. The
+//!   solution (docs/verification.md, benchmark 1) as well as for the linear Couette one. The
 //!   stencil stays in the tridiagonal band and keeps the M-matrix sign pattern.
 //! * Face velocities: flux-continuity interpolation (w_L u_L + w_R u_R)/(w_L + w_R),
 //!   w = k / distance, consistent with the harmonic face diffusivity (linear

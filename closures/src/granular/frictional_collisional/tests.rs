@@ -168,7 +168,7 @@ fn initial_model_and_its_parts() {
     assert!(m.provides().iter().next().is_some());
 }
 
-/// VERIFICATION.md benchmark 7: homogeneous cooling (Haff's law).
+/// docs/verification.md, benchmark 7: homogeneous cooling (Haff's law).
 #[test]
 fn haff_homogeneous_cooling() {
     let (d, t0) = (6e-3, 1e-2f64);
@@ -202,7 +202,7 @@ fn haff_homogeneous_cooling() {
     }
 }
 
-/// VERIFICATION.md benchmark 8: homogeneous simple shear. T from the balance
+/// docs/verification.md, benchmark 8: homogeneous simple shear. T from the balance
 /// eta gamma^2 = Gamma (solved numerically), then tau/p = sqrt(F2 F4)/F1 and
 /// T/(gamma d)^2 = F2/F4.
 #[test]

@@ -29,7 +29,7 @@
 //!   nu_eta* = chi (3-e)(1+e)/4 = chi [1 - (1-e)^2/4] and zeta* = 5/12 chi (1-e^2): the
 //!   printed denominator, g0 = chi included.
 //! * eta_b is 3/5 of GD's bulk viscosity gamma* eta_0 = 128/(5 pi) phi^2 chi (1+e) eta_0
-//!   = 4/(3 sqrt(pi)) (1+e) phi^2 g0 rho_p d sqrt(T) (VERIFICATION.md).
+//!   = 4/(3 sqrt(pi)) (1+e) phi^2 g0 rho_p d sqrt(T) (docs/verification.md).
 //! * dilute conductivity (for q = -kappa grad T with T in m^2/s^2)
 //!   kappa_0 = m 75/(64 d^2) sqrt(T_E/(pi m)) = (75 sqrt(pi)/384) rho_p d sqrt(T);
 //!   GD's kappa_k*/kappa_0 = 2/3 [..]/(nu_kappa* - 2 zeta*) with
@@ -38,7 +38,7 @@
 //!   7/16 is computed in floating point (`7.0 / 16.0`).
 //! * kappa_b = 256/(25 pi) phi^2 chi (1+e) kappa_0 = 2/sqrt(pi) (1+e) phi^2 g0.
 //! * F4: Gamma = 12 (1-e^2) rho_p phi^2 g0 T^{3/2} / (sqrt(pi) d), the Haff cooling rate
-//!   (VERIFICATION.md benchmark 7).
+//!   (docs/verification.md, benchmark 7).
 //!
 //! These are consistent with eta = rho_p d F2 sqrt(T); tests check the dilute elastic
 //! limits 5 sqrt(pi)/96 and 75 sqrt(pi)/384 and benchmarks 7 (Haff) and 8 (simple shear).

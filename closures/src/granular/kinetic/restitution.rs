@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 /// Jenkins & Zhang (2002) friction correction f(mu_p) of e_eff = e - f(mu_p),
 /// Chassagne et al. 2023 App. C eqs C1-C6, with the CORRECTED sliding threshold
 /// mu0 = (7/2) mu_p (1+e)/(1+e_t) (the printed eq C6 has (1+e_t)/(1+e_t), a typo; see
-/// VERIFICATION.md):
+/// docs/verification.md):
 ///
 /// ```text
 /// f  = (a1 - a2 b1/b2) / 2
