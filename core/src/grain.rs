@@ -11,6 +11,14 @@ pub const fn sphere_volume(d: f64) -> f64 {
     std::f64::consts::PI * d * d * d / 6.0
 }
 
+/// Volume of a sphere of radius `r`, 4/3 pi r^3, evaluated as `4 / 3 * PI * r * r * r`: the
+/// form the DEM weighs its particles' slices by ([`sphere_volume`] of the diameter rounds
+/// differently in the last bit).
+#[inline]
+pub const fn ball_volume(r: f64) -> f64 {
+    4.0 / 3.0 * std::f64::consts::PI * r * r * r
+}
+
 /// Carnahan & Starling (1969) radial distribution at contact of hard spheres,
 /// g0 = (2 - phi) / (2 (1 - phi)^3).
 ///

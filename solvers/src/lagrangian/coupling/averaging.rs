@@ -44,6 +44,7 @@
 
 use crate::lagrangian::engine::particles::Particles;
 use crate::lagrangian::engine::slicing::sphere_slices;
+use saltus_core::grain::ball_volume;
 
 /// Which exchange the third sum of [`CellSums`] holds, and how [`CellSums::coupling`]
 /// reads it (module documentation).
@@ -100,7 +101,7 @@ impl CellSums {
         let n = self.vol.len();
         for a in 0..p.len() {
             let (zc, r) = (p.z[a] - base, p.radius[a]);
-            let vp = 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
+            let vp = ball_volume(r);
             let (vx, vy, vz) = (p.vx[a], p.vy[a], p.vz[a]);
             let kp = k[a];
             let carried = match seen {
@@ -205,7 +206,7 @@ mod tests {
             let mut s = CellSums::new(n);
             s.accumulate(&p, 0.0, dz, &[0.0], &[0.0], Seen::Centre);
             let total: f64 = s.vol.iter().sum();
-            let v = 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
+            let v = ball_volume(r);
             prop_assert!((total / v - 1.0).abs() < 1e-9);
             prop_assert!(s.vol.iter().all(|w| *w >= -1e-18));
         }
@@ -246,7 +247,7 @@ mod tests {
             let m = k.len();
             let [beta, up, urx] = exchange(&z[..m], &v[..m], &k, &fl[..m], &seen[..m], true, &uc);
             let fluid: f64 = (0..n).map(|c| beta[c] * (uc[c] - up[c]) * AREA * dz).sum();
-            let vp = 4.0 / 3.0 * std::f64::consts::PI * R * R * R;
+            let vp = ball_volume(R);
             let (mut expected, mut scale) = (0.0, 1e-300);
             for a in 0..m {
                 sphere_slices(z[a], R, n, dz, |c, w| {
@@ -297,7 +298,7 @@ mod tests {
             field.set_velocity(&uc);
             let mut sum = 0.0;
             sphere_slices(z, r, n, dz, |c, w| sum += w * uc[c]);
-            let direct = sum / (4.0 / 3.0 * std::f64::consts::PI * r * r * r);
+            let direct = sum / ball_volume(r);
             let fast = field.sphere_velocity(z + base, r);
             prop_assert!((fast - direct).abs() <= 1e-9, "{} vs {}", fast, direct);
         }

@@ -35,6 +35,7 @@
 //! in step (the random phase the closure's documentation asks for).
 
 use rand::Rng as _;
+use saltus_core::grain::ball_volume;
 use saltus_core::rng::{stream, Rng};
 use saltus_core::scene::DragVelocity;
 use saltus_core::{DragLaw, FlowScales, Fluctuation, Hindrance, ParticleSlip, TurbulencePoint};
@@ -42,8 +43,9 @@ use saltus_core::{DragLaw, FlowScales, Fluctuation, Hindrance, ParticleSlip, Tur
 use rayon::prelude::*;
 
 use crate::lagrangian::engine::chunks::{chunks_per_task, CHUNK};
-use crate::lagrangian::engine::particles::{sphere_volume, Particles};
+use crate::lagrangian::engine::particles::Particles;
 use crate::lagrangian::engine::slicing::sphere_slices;
+use saltus_core::grain::sphere_volume;
 
 /// Largest column height, in grain radii, for which [`FluidField::sphere_velocity`] uses
 /// the moments of the column (case 1: 63, Fry's Couette: 41).
@@ -218,7 +220,7 @@ impl FluidField {
             // moments not refreshed since `u` changed size, or too coarse for this grain
             let mut sum = 0.0;
             sphere_slices(z, r, self.u.len(), self.dz, |c, w| sum += w * self.u[c]);
-            return sum / (4.0 / 3.0 * std::f64::consts::PI * r * r * r);
+            return sum / ball_volume(r);
         }
         let (a, b) = (self.integrals(z - r), self.integrals(z + r));
         let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];

@@ -8,6 +8,7 @@
 //! particle and added in particle order. No step allocates once the buffers reached their
 //! size, and the sums do not depend on the number of threads.
 
+use saltus_core::grain::ball_volume;
 use serde::{Deserialize, Serialize};
 
 use super::chunks::CHUNK;
@@ -76,7 +77,7 @@ impl End {
         if self.r <= 0.0 {
             return if self.z >= h0 && self.z < h1 { 1.0 } else { 0.0 };
         }
-        let v = 4.0 / 3.0 * std::f64::consts::PI * self.r.powi(3);
+        let v = ball_volume(self.r);
         (super::slicing::cap_volume(self.z, self.r, h1) - super::slicing::cap_volume(self.z, self.r, h0)) / v
     }
 }

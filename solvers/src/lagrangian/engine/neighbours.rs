@@ -120,8 +120,8 @@ impl Rows {
 
 /// Steps between rebuilds the skin is adapted to. On the peer's bedload case at 0.22
 /// contact times per step, 15, 25 and 40 steps cost about the same CPU per step, 25 the
-/// least (a skin of 0.33 d there, 1.5 times the pairs of 0.1 d); docs/benchmarks.md,
-/// "Speed at large time steps".
+/// least (a skin of 0.33 d there, 1.5 times the pairs of 0.1 d; docs/performance.md
+/// gives the case's throughput).
 pub const TARGET_STEPS: f64 = 25.0;
 /// Largest adapted skin, in diameters of the largest particle.
 pub const MAX_SKIN_DIAMETERS: f64 = 1.0;

@@ -1,5 +1,5 @@
 //! The pair loop of the linear contact law in three passes, so that the contact force
-//! itself runs as one vector loop (issue 13 item 4, fourth pass):
+//! itself runs as one vector loop:
 //!
 //! 1. over the listed pairs of a block, without a branch: the branch vector and the
 //!    overlap test, the pairs in contact compacted into a list, the histories and the
@@ -21,8 +21,8 @@
 //!
 //! Passes 1 and 2 read the particles at random, by the pairs' indices, from the arrays
 //! of [`super::particles::Particles`]: records packed once per step (position and radius
-//! in half a cache line, velocity and spin in one) were tried in the fifth pass and
-//! removed in the sixth, having given no measurable gain (docs/benchmarks.md).
+//! in half a cache line, velocity and spin in one) were tried and gave no measurable
+//! gain, so the loop reads the arrays themselves.
 
 use std::cell::RefCell;
 

@@ -136,8 +136,3 @@ impl Particles {
         s / (3.0 * n)
     }
 }
-
-/// Volume of a sphere of diameter d.
-pub fn sphere_volume(d: f64) -> f64 {
-    std::f64::consts::PI * d * d * d / 6.0
-}

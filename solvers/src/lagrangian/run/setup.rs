@@ -26,8 +26,9 @@ use saltus_core::Error;
 
 use super::config::{Bottom, Config, FluidMode, Initial};
 use crate::lagrangian::engine::cylinders::HalfCylinders;
-use crate::lagrangian::engine::particles::{sphere_volume, Box3, Particles};
+use crate::lagrangian::engine::particles::{Box3, Particles};
 use crate::lagrangian::engine::walls::Wall;
+use saltus_core::grain::sphere_volume;
 
 /// Stream numbers of the set-up draws, far from the per-particle streams.
 const SETUP_STREAM: u64 = u64::MAX - 16;

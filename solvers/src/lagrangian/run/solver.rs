@@ -15,11 +15,11 @@ use crate::lagrangian::coupling::averaging::CellSums;
 use crate::lagrangian::coupling::drag::{FluidField, FluidForces};
 use crate::lagrangian::engine::contact::{ContactLaw, ContactModel};
 use crate::lagrangian::engine::dem::Dem;
-use crate::lagrangian::engine::particles::sphere_volume;
 use crate::lagrangian::engine::particles::Particles;
 use crate::lagrangian::stats::granular::GranularStats;
 use crate::lagrangian::stats::statistics::Stats;
 use crate::lagrangian::stats::steady::Steady;
+use saltus_core::grain::{carnahan_starling, sphere_volume};
 
 /// Particle speed beyond which the run is declared unstable (m/s): far above any
 /// bedload or settling velocity, reached only when the time step is too large for the
@@ -239,7 +239,7 @@ fn haff_constant(cfg: &Config, p: &Particles, body: [f64; 3], d: f64) -> Option<
     }
     let volume = cfg.domain.length * cfg.domain.width * n.height;
     let phi = p.n_mobile as f64 * sphere_volume(d) / volume;
-    let g0 = (1.0 - 0.5 * phi) / (1.0 - phi).powi(3);
+    let g0 = carnahan_starling(phi);
     let e = s.restitution;
     crate::output::finite(std::f64::consts::PI.sqrt() * d / (4.0 * (1.0 - e * e) * phi * g0)).filter(|h| *h > 0.0)
 }

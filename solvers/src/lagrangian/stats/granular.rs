@@ -76,6 +76,7 @@
 //! A value that a slice cannot define (no particle volume there, or p_p <= 0 for I, J and
 //! mu_eff) is NaN here and an empty cell in profiles.csv.
 
+use saltus_core::grain::ball_volume;
 use serde::{Deserialize, Serialize};
 
 use super::statistics::Stats;
@@ -208,7 +209,7 @@ impl GranularStats {
         let n = self.len();
         for a in 0..p.len() {
             let (zc, r) = (p.z[a] - slices.base, p.radius[a]);
-            let vp = 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
+            let vp = ball_volume(r);
             let v = [p.vx[a], p.vy[a], p.vz[a]];
             let v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
             let f = if a < p.n_mobile { drag(a) } else { [0.0; 3] };
@@ -309,7 +310,7 @@ mod tests {
     /// int over [h0, h1] of (S_a - S_b) / (z_b - z_a) by Simpson's rule on the cap
     /// volumes: an independent evaluation of the shares.
     fn quadrature(a: End, b: End, h0: f64, h1: f64) -> f64 {
-        let frac = |e: End, h: f64| cap_volume(e.z, e.r, h) / (4.0 / 3.0 * std::f64::consts::PI * e.r.powi(3));
+        let frac = |e: End, h: f64| cap_volume(e.z, e.r, h) / ball_volume(e.r);
         let g = |h: f64| frac(a, h) - frac(b, h);
         let n = 20_000;
         let step = (h1 - h0) / n as f64;
