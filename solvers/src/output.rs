@@ -63,7 +63,7 @@ pub struct Summary {
     pub qs_star: Option<f64>,
     /// DEM runs: standard error of the time-averaged qs (m^2/s), Flyvbjerg-Petersen
     /// blocking of the qs samples of the averaging window with the block length chosen by
-    /// Jonsson's test ([`crate::lagrangian::stats::Blocking`]); absent where it cannot be
+    /// Jonsson's test ([`crate::lagrangian::stats::blocking::Blocking`]); absent where it cannot be
     /// estimated (too few samples, or blocks that stay correlated: the paragraph says
     /// which)
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -83,3 +83,68 @@ fn an_interrupted_dem_run_writes_and_returns_its_state() {
     assert!(sum.qs.is_some());
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// The stages of `summary.json`'s `timing`, which must add up to its wall time.
+fn stages(out: &Path) -> (f64, serde_json::Map<String, serde_json::Value>) {
+    let w = written_summary(out);
+    let t = &w["timing"];
+    let wall = t["wall"].as_f64().expect("timing.wall");
+    let stages = t["stages"].as_object().expect("timing.stages").clone();
+    let sum: f64 = stages.values().map(|v| v.as_f64().expect("seconds")).sum();
+    assert!(stages.values().all(|v| v.as_f64().is_some_and(|s| s >= 0.0)), "{stages:?}");
+    assert!((sum - wall).abs() <= 1e-9 * wall.max(1.0), "stages {sum} s against the wall {wall} s");
+    (wall, stages)
+}
+
+#[test]
+fn every_run_writes_its_wall_time_by_stage() {
+    let s = scene("chassagne2023/case01.toml", &["domain.cells=60", "solver.eulerian.end_time=0.5"]);
+    let out = tmp_out("eulerian_timing");
+    let r = saltus_solvers::run(&s, &out, &mut Quiet).expect("runs");
+    let (_, st) = stages(&out);
+    for k in ["coefficients", "momentum", "granular", "turbulence", "volume_fraction", "output", "other"] {
+        assert!(st.contains_key(k), "{k} missing from {st:?}");
+    }
+    // every step solves the momentum and evaluates the coefficients
+    assert!(st["momentum"].as_f64() > Some(0.0) && st["coefficients"].as_f64() > Some(0.0), "{st:?}");
+    assert!(r.report.text.contains("wall time") && r.report.text.contains("coefficients"), "{}", r.report.text);
+    let _ = std::fs::remove_dir_all(&out);
+
+    // a coupled DEM run: the engine's stages, the coupling's and the driver's
+    let s = scene(
+        "chassagne2023/case01.toml",
+        &[
+            "solver.type=\"lagrangian\"",
+            "solver.lagrangian.length=0.036",
+            "solver.lagrangian.width=0.036",
+            "domain.bed_height=0.018",
+            "domain.water_depth=0.03",
+            "solver.lagrangian.settle_time=0.05",
+            "solver.lagrangian.end_time=0.03",
+            "solver.lagrangian.stats_start=0.0",
+        ],
+    );
+    let out = tmp_out("dem_timing");
+    saltus_solvers::run(&s, &out, &mut Quiet).expect("runs");
+    let (_, st) = stages(&out);
+    for k in ["neighbours", "pair_forces", "integration", "drag", "fluid_column", "averaging", "sampling"] {
+        assert!(st[k].as_f64() > Some(0.0), "{k}: {st:?}");
+    }
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn a_wall_clock_limit_ends_a_run_with_its_outputs_and_a_checkpoint() {
+    let s = scene("verification/dem_settling.toml", &[]);
+    let out = tmp_out("dem_wall_clock");
+    let options = saltus_solvers::RunOptions { max_wall: Some(0.0), ..Default::default() };
+    let r = saltus_solvers::run_with(&s, &out, &mut Quiet, &options).expect("an outcome");
+    assert_eq!(r.ending, Ending::WallClock);
+    assert_eq!(written_summary(&out)["ending"].as_str(), Some("wall_clock"));
+    assert!(out.join("checkpoint.bin").is_file(), "a checkpoint to go on from");
+    // and it goes on from there to the scene's end
+    let options = saltus_solvers::RunOptions { restart: Some(out.clone()), ..Default::default() };
+    let r = saltus_solvers::run_with(&s, &out, &mut Quiet, &options).expect("restarts");
+    assert_eq!(r.ending, Ending::EndTime);
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -1,7 +1,7 @@
 //! # Lagrangian solver: soft-sphere DEM coupled to the 1D fluid column (Maurin et al. 2015)
 //!
 //! One folder per stage; imports run one way, `engine <- coupling <- stats <- run <- output`,
-//! and [`stepper`] joins the run and its outputs for the driver:
+//! and `stepper.rs` joins the run and its outputs for the driver:
 //!
 //! - [`engine`]: the dry DEM step (particles, contact laws, walls, half-cylinders,
 //!   neighbour list, pair loop, chunking, the contact sums of a sampled step); it knows

@@ -18,7 +18,7 @@
 //! grain; parts outside the column see the fluid at rest), so that the exchange of
 //! `averaging.rs` hands the fluid exactly the grains' drag. phi is the volume fraction of
 //! the cell holding the centre (as Maurin's implementation). Buoyancy is part of the body
-//! force ([`super::setup::body_acceleration`]).
+//! force ([`crate::lagrangian::run::setup::body_acceleration`]).
 //!
 //! The closures are called once per chunk of particles through their batch methods
 //! (C_D over Re*, f over (phi, Re_p)); Re* = c(phi) Re_p with c the ratio of the

@@ -29,15 +29,16 @@ use super::contact::{contact_force, cross, ContactInput, ContactLaw, ContactMode
 use super::contact_sums::{contact_values, spread, ContactSums, End, Slices, WallRecord, GROUP};
 use super::cylinders::{HalfCylinders, Sphere, Touches};
 use super::neighbours::NeighbourList;
-use super::pairs::{Contact, PairOut, PairView, Touching};
+use super::pairs::{Contact, PairOut, PairView};
 use super::particles::{Box3, Particles};
+use super::scratch::Scratch;
 use super::walls::{Wall, MAX_WALLS};
 
 /// The DEM engine: its parameters (box, contact law, walls, bottom, time step: set once
 /// from the scene, carried in a checkpoint with the state so that a restore can be
 /// checked against the scene), its state (particles, neighbour list with the pairs'
 /// springs, the walls' and cylinders' springs, body force, clock) and its scratch
-/// ([`Scratch`], refilled by every step, never saved). The coupled solver reaches into
+/// (refilled by every step, never saved). The coupled solver reaches into
 /// the particles and the body force; everyone else reads it through its methods.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Dem {
@@ -76,54 +77,6 @@ pub struct Dem {
     rebuild_due: bool,
     #[serde(skip)]
     work: Scratch,
-}
-
-/// What a DEM step refills: the external force and torque the caller sets before it, the
-/// pair forces, the contact flags, the contact sums of a sampled step, and the wall time
-/// of its stages.
-#[derive(Clone, Debug)]
-struct Scratch {
-    /// external force per mobile particle (N), set by the caller before each step
-    ext: [Vec<f64>; 3],
-    /// external torque per mobile particle (N m)
-    ext_torque: [Vec<f64>; 3],
-    pair_f: Vec<[f64; 3]>,
-    pair_t: Vec<[f64; 3]>,
-    touching: Touching,
-    /// the granular-field sums of the last sampled step ([`Dem::step_sampled`])
-    contact: ContactSums,
-    /// wall time of the step's stages ([`STAGES`])
-    stages: Stages,
-}
-
-impl Default for Scratch {
-    fn default() -> Self {
-        Self::new(0)
-    }
-}
-
-impl Scratch {
-    /// Scratch for `nm` mobile particles.
-    fn new(nm: usize) -> Self {
-        Self {
-            ext: [vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]],
-            ext_torque: [vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]],
-            pair_f: Vec::new(),
-            pair_t: Vec::new(),
-            touching: Touching::default(),
-            contact: ContactSums::default(),
-            stages: Stages::new(&STAGES),
-        }
-    }
-
-    /// The per-particle buffers for `nm` mobile particles, zero (a restored engine's, or
-    /// after the particles changed).
-    fn fit(&mut self, nm: usize) {
-        for v in self.ext.iter_mut().chain(self.ext_torque.iter_mut()) {
-            v.clear();
-            v.resize(nm, 0.0);
-        }
-    }
 }
 
 /// The stages of a DEM step whose wall time the engine counts.
@@ -229,7 +182,7 @@ impl Dem {
     }
 
     /// Advance one time step; with `slices`, also take the contact sums of the granular
-    /// fields on them ([`super::granular`]), read afterwards with [`Dem::contact_sums`].
+    /// fields on them ([`super::contact_sums`]), read afterwards with [`Dem::contact_sums`].
     pub fn step_sampled(&mut self, slices: Option<Slices>) {
         let mut t = Instant::now();
         if self.rebuild_due || self.list.x0.len() != self.p.len() {

@@ -12,5 +12,6 @@ pub mod dem;
 pub mod neighbours;
 mod pairs;
 pub mod particles;
+mod scratch;
 pub mod slicing;
 pub mod walls;

@@ -6,13 +6,13 @@
 mod access;
 pub mod config;
 mod deposition;
-pub(crate) mod params;
+pub mod params;
 mod sampling;
 pub mod setup;
 pub mod solver;
-pub(crate) mod state;
+pub mod state;
 mod stepping;
-pub(crate) mod workspace;
+pub mod workspace;
 
 /// The stages of a flow step whose wall time the solver counts besides the engine's
 /// ([`crate::lagrangian::engine::dem::STAGES`]): the drag on the grains, the fluid

@@ -10,7 +10,7 @@ use crate::column::ColumnParams;
 use crate::lagrangian::coupling::drag::DragModels;
 
 /// The resolved parameters of a run.
-pub(crate) struct Params<'a> {
+pub struct Params<'a> {
     pub(crate) scene: &'a Scene,
     pub(crate) cfg: Config,
     pub(crate) viscosity: &'a dyn EffectiveViscosity,

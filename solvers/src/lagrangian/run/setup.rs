@@ -12,7 +12,7 @@
 //!
 //! Frey bottoms (Maurin et al. 2015 section III A-B): `bead_row` puts fixed beads of
 //! diameter d side by side, one per diameter along x and across, `half_cylinders` puts
-//! cylinders of diameter d with axes across the channel ([`super::cylinders`]); both at
+//! cylinders of diameter d with axes across the channel ([`crate::lagrangian::engine::cylinders`]); both at
 //! z = d plus an elevation drawn uniformly from (k - 5.5) d / 12, k = 0..11 (the paper's
 //! -2.75 to 2.75 mm in steps of 0.5 mm for d = 6 mm), the column starting at their mean
 //! elevation d. The bed is released above them (from 2 d) and deposited; nothing is

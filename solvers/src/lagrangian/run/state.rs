@@ -27,7 +27,7 @@ pub(crate) enum Stage {
 
 /// The state a checkpoint carries.
 #[derive(Clone, Debug, Serialize, Deserialize)]
-pub(crate) struct State {
+pub struct State {
     pub(crate) stage: Stage,
     /// time of the flow (after the deposition) (s)
     pub(crate) time: f64,

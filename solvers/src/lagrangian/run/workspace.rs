@@ -8,7 +8,7 @@ use saltus_core::Error;
 use crate::run::timing::Stages;
 
 /// Scratch and pool.
-pub(crate) struct Workspace {
+pub struct Workspace {
     /// fluid velocity averaged over each particle at the drag evaluation of the last fluid
     /// update (m/s), ubar_p of the exact exchange
     /// ([`crate::lagrangian::coupling::averaging::CellSums::accumulate`]); with

@@ -8,7 +8,7 @@
 //!
 //! The slices are those of phi (Maurin et al. 2015 eq A1, Chassagne Appendix A): the
 //! fluid cells, over the whole periodic area A, of height dz and volume V = A dz. The
-//! fields are sampled at the averaging samples of [`super::stats`] (every fluid update
+//! fields are sampled at the averaging samples of [`super::statistics`] (every fluid update
 //! from `stats_start`, or every `fluid_period` of a dry run that asks for them) and
 //! averaged over space and time together, like phi: every sum below is summed over the
 //! samples and divided by their number S and by V.
@@ -56,7 +56,7 @@
 //!         - <v_j> P^contact_jz
 //!   ```
 //! * `dissipation` Gamma (eq 2.29, W m^-3, >= 0): (1/V) sum w_c D_c with D_c the power the
-//!   contact law dissipates ([`super::contact`]: dashpot c v_n^2 plus Coulomb slip), walls
+//!   contact law dissipates ([`crate::lagrangian::engine::contact`]: dashpot c v_n^2 plus Coulomb slip), walls
 //!   and fixed particles included. Eq 2.29 sums -f.(v_p - v_q)/2 over the translational
 //!   velocities, which also counts the energy exchanged with the rotations and stored in
 //!   the springs; those average out (rotation: at steady state) and what remains is D.
