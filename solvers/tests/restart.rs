@@ -2,6 +2,8 @@
 //! bit where the uninterrupted run does, from the flow and from the deposition; a
 //! restart from a scene that differs, or from a damaged checkpoint, is refused.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use saltus_core::scene::Scene;
@@ -14,23 +16,19 @@ use saltus_solvers::{Progress, RunOptions};
 fn scene(extra: &[&str]) -> Scene {
     saltus_closures::link();
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases/chassagne2023/case01.toml");
-    let mut set: Vec<String> = [
-        "solver.type=\"lagrangian\"",
-        "solver.lagrangian.length=0.036",
-        "solver.lagrangian.width=0.036",
-        "domain.bed_height=0.018",
-        "domain.water_depth=0.03",
-        "solver.lagrangian.settle_time=0.05",
-        "solver.lagrangian.end_time=0.12",
-        "solver.lagrangian.stats_start=0.0",
-        "closures.turbulence={type=\"k_omega\"}",
-        "closures.fluctuation={type=\"drw\"}",
-        "output.timeseries_interval=0.005",
-        "output.snapshot_interval=0.04",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
+    let mut set: Vec<String> = common::TINY_COUPLED_BED
+        .iter()
+        .copied()
+        .chain([
+            "solver.lagrangian.end_time=0.12",
+            "solver.lagrangian.stats_start=0.0",
+            "closures.turbulence={type=\"k_omega\"}",
+            "closures.fluctuation={type=\"drw\"}",
+            "output.timeseries_interval=0.005",
+            "output.snapshot_interval=0.04",
+        ])
+        .map(|s| s.to_string())
+        .collect();
     set.extend(extra.iter().map(|s| s.to_string()));
     Scene::from_file_with(&file, &set).unwrap_or_else(|e| panic!("{e}"))
 }

@@ -1,6 +1,8 @@
 //! The run driver: `saltus_solvers::run` returns the last state on every ending, after
 //! writing it, for both solvers.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use saltus_core::scene::{Scene, SolverKind};
@@ -111,19 +113,12 @@ fn every_run_writes_its_wall_time_by_stage() {
     let _ = std::fs::remove_dir_all(&out);
 
     // a coupled DEM run: the engine's stages, the coupling's and the driver's
-    let s = scene(
-        "chassagne2023/case01.toml",
-        &[
-            "solver.type=\"lagrangian\"",
-            "solver.lagrangian.length=0.036",
-            "solver.lagrangian.width=0.036",
-            "domain.bed_height=0.018",
-            "domain.water_depth=0.03",
-            "solver.lagrangian.settle_time=0.05",
-            "solver.lagrangian.end_time=0.03",
-            "solver.lagrangian.stats_start=0.0",
-        ],
-    );
+    let set: Vec<&str> = common::TINY_COUPLED_BED
+        .iter()
+        .copied()
+        .chain(["solver.lagrangian.end_time=0.03", "solver.lagrangian.stats_start=0.0"])
+        .collect();
+    let s = scene("chassagne2023/case01.toml", &set);
     let out = tmp_out("dem_timing");
     saltus_solvers::run(&s, &out, &mut Quiet).expect("runs");
     let (_, st) = stages(&out);

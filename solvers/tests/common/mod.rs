@@ -1,5 +1,8 @@
 //! Scene overrides shared by the Lagrangian test files.
 
+// each test file that includes this module uses some of these only
+#![allow(dead_code)]
+
 /// A coupled bed of case 1 small enough for CI: 10 d x 10 d cell, 6 d bed, 5 d of water,
 /// the mixing length of the DEM set-up (compare_case01_solvers.toml).
 pub const SMALL_COUPLED_BED: [&str; 8] = [
@@ -11,4 +14,15 @@ pub const SMALL_COUPLED_BED: [&str; 8] = [
     "domain.water_depth=0.03",
     "solver.lagrangian.cells=120",
     "solver.lagrangian.settle_time=0.1",
+];
+
+/// A bed of a few hundred grains of case 1 in a box of 6 x 6 diameters, deposited for
+/// 0.05 s: the smallest coupled run that has every stage of the DEM step.
+pub const TINY_COUPLED_BED: [&str; 6] = [
+    "solver.type=\"lagrangian\"",
+    "solver.lagrangian.length=0.036",
+    "solver.lagrangian.width=0.036",
+    "domain.bed_height=0.018",
+    "domain.water_depth=0.03",
+    "solver.lagrangian.settle_time=0.05",
 ];
