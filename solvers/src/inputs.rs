@@ -41,6 +41,16 @@ pub fn flow_scales(zc: &[f64], dz: &[f64], u: &[f64], height: f64, bed: f64) -> 
     FlowScales { depth: height - bed, bulk_velocity: if depth > 0.0 { q / depth } else { 0.0 } }
 }
 
+/// The slip magnitude of the column's mean flow that the drag closures take (m/s),
+/// |(u_f - u_p, w_p / (1 - phi))|: the streamwise slip and the wall-normal one, the fluid's
+/// wall-normal velocity being -phi w_p / (1 - phi) in a column with an impermeable
+/// bottom (Chassagne et al. 2023 eqs 2.5-2.6 and 4.3). The Eulerian drag and `saltus
+/// diagnose` evaluate it here, so that a comparison sees the solver's own slip.
+#[inline]
+pub fn mean_slip(u_f: f64, u_p: f64, w_p: f64, phi: f64) -> f64 {
+    (u_f - u_p).hypot(w_p / (1.0 - phi))
+}
+
 /// Kinematic Reynolds shear stress R_xz / (rho_f eps) = nu_t |du/dz| (m^2/s^2) of a
 /// mixing-length or two-equation column, the magnitude a fluctuation closure scales with
 /// (Chassagne et al. 2023 eq 4.4); its sign does not enter.

@@ -239,7 +239,7 @@ fn drag_dissipation(
     for c in &used {
         let p = phi[c.k].clamp(0.0, 1.0 - 1e-12);
         let w = w_p.map_or(0.0, |w| if w[c.k].is_finite() { w[c.k] } else { 0.0 });
-        let slip = (u_f[c.k] - u_p[c.k]).hypot(w / (1.0 - p));
+        let slip = saltus_solvers::inputs::mean_slip(u_f[c.k], u_p[c.k], w, p);
         phis.push(p);
         re.push(slip * f.d / nu);
     }

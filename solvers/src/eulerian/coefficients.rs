@@ -230,12 +230,11 @@ impl Eulerian<'_> {
         let sc = &mut self.sc;
         for i in 0..n {
             let phi = self.s.phi[i].clamp(0.0, 1.0 - 1e-12);
-            let eps = 1.0 - phi;
             // the slip of eq 4.3, u_f - u_p + u_d: the particle flux less its drift part
             let f =
                 0.5 * (self.s.flux[i] + self.s.flux[i + 1]) - 0.5 * (self.s.drift_flux[i] + self.s.drift_flux[i + 1]);
             let wp = if phi > self.slip_phi { f / phi } else { 0.0 };
-            let slip = (self.s.uf[i] - self.s.up[i]).hypot(wp / eps);
+            let slip = crate::inputs::mean_slip(self.s.uf[i], self.s.up[i], wp, phi);
             sc.phi_c[i] = phi;
             sc.work[i] = slip;
             sc.re[i] = slip * c.d / c.nu_f;
