@@ -109,7 +109,7 @@ pub fn resolve(
     let value = match drive {
         Drive::WaterDepth => {
             let push = rho_f * g * physics.slope + physics.pressure_gradient;
-            if !(push > 0.0) {
+            if push.is_nan() || push <= 0.0 {
                 return Err(key(
                     "physics.drive",
                     format!(
@@ -137,7 +137,7 @@ pub fn resolve(
             // rho_f h tan(alpha) (or sin(alpha) for the vertical weight) = theta (rho_p - rho_f) d
             let t = theta * buoyant * d / (rho_f * h);
             let sin = if vertical { t } else { t / (1.0 + t * t).sqrt() };
-            if !(sin <= 1.0) {
+            if sin.is_nan() || sin > 1.0 {
                 return Err(key(
                     "physics.shields",
                     format!("{} over a water depth of {} m needs sin(alpha) = {} > 1 (vertical weight); lower it or deepen the water", number(theta), number(h), number(sin)),

@@ -1,0 +1,220 @@
+//! `saltus sweep`: a study over named axes of scene keys, run on this machine
+//! ([`run::run`]) or written out as one resolved scene per point for a scheduler
+//! ([`emit`]) and gathered afterwards ([`collect`]). See docs/studies.md.
+//!
+//! ```toml
+//! base = "../chassagne2023/case01.toml"   # scene, relative to this file
+//! combine = "product"                     # or "zip": the i-th values together
+//! set = ['physics.drive="water_depth"']   # overrides of every point
+//! unset = ["domain.water_depth"]          # keys of the base removed first
+//! [meta]
+//! name = "chassagne2023_theta"            # output folder out/<name>
+//! [[axis]]
+//! key = "physics.shields"                 # any scene key, `seed` for an ensemble
+//! name = "theta"                          # column name (default: the key)
+//! values = [0.2, 0.4, 0.6]                # or linspace / logspace = [start, stop, count]
+//! [[point]]                               # overrides of the points it matches
+//! where = { theta = 0.6 }
+//! set = ["domain.cells=120"]
+//! ```
+
+pub mod cpu;
+pub mod figure;
+pub mod fit;
+pub mod manifest;
+pub mod run;
+pub mod spec;
+pub mod table;
+pub mod warm;
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+
+pub use manifest::{Manifest, Status};
+pub use run::{Options, Report};
+pub use spec::{load, Sweep};
+
+/// Output folder when `--out` is not given: `out/<meta.name>`.
+pub fn default_out(s: &Sweep) -> PathBuf {
+    PathBuf::from("out").join(&s.meta.name)
+}
+
+/// Default lower bound of the fitted y (qs*): below it a point is no transport.
+pub const FIT_MIN: f64 = 1e-3;
+
+/// Write the sweep's tables and figure from the points' summaries on disk, and return the
+/// report.
+pub fn finish(
+    sweep: &Sweep,
+    out: &Path,
+    manifest: Manifest,
+    mut warnings: Vec<String>,
+    ran: usize,
+) -> anyhow::Result<Report> {
+    let summaries: Vec<Option<table::Fields>> = manifest
+        .points
+        .iter()
+        .map(|p| table::read_summary(&out.join(&p.dir)))
+        .collect::<anyhow::Result<_>>()?;
+    let mut files = Vec::new();
+    let (header, rows) = table::rows(&manifest, &summaries);
+    let csv = out.join(table::TABLE);
+    table::write_csv(&csv, &header, &rows)?;
+    files.push(csv);
+    if let Some((h, r)) = table::seed_rows(&manifest, &summaries) {
+        let f = out.join(table::SEEDS);
+        table::write_csv(&f, &h, &r)?;
+        files.push(f);
+    }
+    let mut fit = None;
+    if let Some((x_desc, y_desc, marks)) = figure_marks(sweep, &manifest, &summaries) {
+        {
+            let min = sweep.figure.fit_min.unwrap_or(FIT_MIN);
+            let fitted: Vec<_> = marks.iter().copied().filter(|m| m.1 > min).collect();
+            fit = fit::fit(&fitted);
+            let data = match &sweep.figure.data {
+                Some(d) => {
+                    let path = sweep.file.parent().unwrap_or(Path::new("")).join(d);
+                    if path.is_file() {
+                        figure::read_mpm(&path).unwrap_or_else(|e| {
+                            warnings.push(format!("{e:#}; the figure is drawn without the flume data"));
+                            Vec::new()
+                        })
+                    } else {
+                        warnings.push(format!(
+                            "{}: key `figure.data`: {} is not there; the figure is drawn without the flume data",
+                            sweep.file.display(),
+                            path.display()
+                        ));
+                        Vec::new()
+                    }
+                }
+                None => Vec::new(),
+            };
+            let png = out.join(figure::FIGURE);
+            match figure::draw(&sweep.meta.name, &x_desc, &y_desc, &marks, fit.as_ref(), &data, &png) {
+                Ok(()) => files.push(png),
+                Err(e) => warnings.push(format!("{}: not drawn: {e:#}", png.display())),
+            }
+        }
+    }
+    Ok(Report { out: out.to_path_buf(), manifest, summaries, files, fit, warnings, ran })
+}
+
+/// The figure's points: x from the axis (or the summary field) the figure names, y the
+/// summary field (qs* by default) of every done point, pooled over the seeds of an
+/// ensemble, with its error: the run's own (`<y>_stderr`) or, pooled, the larger of the
+/// spread across seeds and the pooled run errors. `None` without a numeric axis.
+fn figure_marks(
+    sweep: &Sweep,
+    m: &Manifest,
+    summaries: &[Option<table::Fields>],
+) -> Option<(String, String, Vec<figure::Mark>)> {
+    let y = sweep.figure.y.clone().unwrap_or_else(|| "qs_star".into());
+    let axis = match &sweep.figure.x {
+        Some(name) => sweep.axes.iter().position(|a| &a.name == name)?,
+        None => sweep.axes.iter().position(|a| !a.is_seed() && (0..a.values.len()).all(|k| a.number(k).is_some()))?,
+    };
+    let x_of = |i: usize| -> Option<f64> {
+        match &sweep.figure.x_field {
+            Some(f) => summaries[i].as_ref()?.number(f),
+            None => sweep.axes[axis].number(sweep.points[i].at[axis]),
+        }
+    };
+    let err_key = format!("{y}_stderr");
+    let done = |i: usize| m.points[i].status == Status::Done;
+    let marks = match table::seed_groups(m) {
+        Some(groups) => groups
+            .iter()
+            .filter_map(|g| {
+                let pts: Vec<usize> = g.points.iter().copied().filter(|&i| done(i)).collect();
+                let xs: Vec<f64> = pts.iter().filter_map(|&i| x_of(i)).collect();
+                let ys: Vec<f64> = pts.iter().filter_map(|&i| summaries[i].as_ref()?.number(&y)).collect();
+                let es: Vec<f64> = pts.iter().filter_map(|&i| summaries[i].as_ref()?.number(&err_key)).collect();
+                let px = table::pool(&xs)?;
+                let py = table::pool(&ys)?;
+                let e = match (py.sem, table::pool_errors(&es)) {
+                    (Some(a), Some(b)) => Some(a.max(b)),
+                    (a, b) => a.or(b),
+                };
+                Some((px.mean, py.mean, e))
+            })
+            .collect(),
+        None => (0..m.points.len())
+            .filter(|&i| done(i))
+            .filter_map(|i| {
+                let s = summaries[i].as_ref()?;
+                Some((x_of(i)?, s.number(&y)?, s.number(&err_key)))
+            })
+            .collect(),
+    };
+    let x_desc = sweep.figure.x_field.clone().unwrap_or_else(|| sweep.axes[axis].name.clone());
+    Some((x_desc, y, marks))
+}
+
+/// Write one resolved scene per point, `DIR/point_NNNN.toml` (its `output.dir` the
+/// point's folder `DIR/point_NNNN`), and the manifest, so that a scheduler's job array
+/// runs `saltus run DIR/point_NNNN.toml` and [`collect`] gathers the table.
+pub fn emit(sweep: &Sweep, dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create", dir.display()))?;
+    let abs = dir.canonicalize().with_context(|| format!("{}: cannot resolve", dir.display()))?;
+    let base = sweep.base_table()?;
+    let mut hashes = Vec::new();
+    let mut files = Vec::new();
+    for p in &sweep.points {
+        let mut scene = sweep.scene(p, &base)?;
+        hashes.push(manifest::hash(scene.to_toml()?.as_bytes()));
+        scene.output.dir = Some(abs.join(p.dir_name()).display().to_string());
+        let f = dir.join(format!("{}.toml", p.dir_name()));
+        let text = format!(
+            "# {} point {} ({}), resolved: run with `saltus run {}`\n{}",
+            sweep.meta.name,
+            p.index,
+            sweep.describe(p),
+            f.display(),
+            scene.to_toml()?
+        );
+        std::fs::write(&f, text).with_context(|| format!("{}: cannot write", f.display()))?;
+        files.push(f);
+    }
+    Manifest::new(sweep, hashes).write(dir)?;
+    Ok(files)
+}
+
+/// Gather the points of the sweep emitted into `dir` (or run there): each point's status
+/// from its `summary.json`, then the tables and the figure as [`run::run`] writes them.
+pub fn collect(sweep: &Sweep, dir: &Path) -> anyhow::Result<Report> {
+    let base = sweep.base_table()?;
+    let mut hashes = Vec::new();
+    for p in &sweep.points {
+        hashes.push(manifest::hash(sweep.scene(p, &base)?.to_toml()?.as_bytes()));
+    }
+    let fresh = Manifest::new(sweep, hashes);
+    let old = Manifest::read(dir)?;
+    if old.sweep_hash != fresh.sweep_hash {
+        anyhow::bail!(
+            "--collect {}: {} was written by another sweep ({}, {} points); {} makes {} points",
+            dir.display(),
+            dir.join(manifest::FILE).display(),
+            old.sweep.display(),
+            old.points.len(),
+            sweep.file.display(),
+            fresh.points.len()
+        );
+    }
+    let mut m = old;
+    for p in &mut m.points {
+        match table::read_summary(&dir.join(&p.dir))? {
+            Some(s) => {
+                p.status = table::status_of(&s);
+                p.ending = s.text("ending").map(str::to_string);
+                p.wall_time_s = s.number("wall_time_s");
+                p.error = s.text("error").map(str::to_string);
+            }
+            None => p.status = Status::Pending,
+        }
+    }
+    m.write(dir)?;
+    finish(sweep, dir, m, Vec::new(), 0)
+}
