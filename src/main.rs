@@ -346,12 +346,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     if let Err(e) = saltus::runner::catch_interrupt() {
                         saltus::errln!("warning: {e:#}; an interrupt ends the sweep without writing its outputs");
                     }
-                    let opts = saltus::sweep::Options {
-                        resume,
-                        jobs,
-                        progress: std::io::stderr().is_terminal(),
-                        quiet,
-                    };
+                    let opts =
+                        saltus::sweep::Options { resume, jobs, progress: std::io::stderr().is_terminal(), quiet };
                     saltus::sweep::run::run(&sweep, &out, &opts)?
                 }
             };

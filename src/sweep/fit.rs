@@ -121,7 +121,15 @@ pub fn fit(points: &[(f64, f64, Option<f64>)]) -> Option<Fit> {
     let var_c = h[0][0] / det * scale;
     let rms = (pts.iter().map(|&(x, y, _)| (y - law(a, c, x)).powi(2)).sum::<f64>() / n as f64).sqrt();
     let at_bound = c > xmin * (1.0 - 1e-3);
-    Some(Fit { a, a_stderr: var_a.max(0.0).sqrt(), theta_c: c, theta_c_stderr: var_c.max(0.0).sqrt(), n, rms, at_bound })
+    Some(Fit {
+        a,
+        a_stderr: var_a.max(0.0).sqrt(),
+        theta_c: c,
+        theta_c_stderr: var_c.max(0.0).sqrt(),
+        n,
+        rms,
+        at_bound,
+    })
 }
 
 #[cfg(test)]

@@ -52,11 +52,8 @@ pub fn finish(
     mut warnings: Vec<String>,
     ran: usize,
 ) -> anyhow::Result<Report> {
-    let summaries: Vec<Option<table::Fields>> = manifest
-        .points
-        .iter()
-        .map(|p| table::read_summary(&out.join(&p.dir)))
-        .collect::<anyhow::Result<_>>()?;
+    let summaries: Vec<Option<table::Fields>> =
+        manifest.points.iter().map(|p| table::read_summary(&out.join(&p.dir))).collect::<anyhow::Result<_>>()?;
     let mut files = Vec::new();
     let (header, rows) = table::rows(&manifest, &summaries);
     let csv = out.join(table::TABLE);

@@ -310,7 +310,8 @@ impl Report {
                 (Some(q), None) => format!("qs* = {q:.6}"),
                 _ => "qs* -".into(),
             };
-            let st = serde_json::to_value(p.status).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default();
+            let st =
+                serde_json::to_value(p.status).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default();
             let _ = writeln!(s, "  {}  {}  {st:<11}  {q}", p.dir, values.join(", "));
         }
         if let Some(f) = &self.fit {

@@ -220,7 +220,10 @@ fn remove_key(table: &mut toml::Table, key: &str) -> Result<(), String> {
     let parts: Vec<&str> = key.split('.').collect();
     let mut cur = table;
     for p in &parts[..parts.len() - 1] {
-        cur = cur.get_mut(*p).and_then(|v| v.as_table_mut()).ok_or_else(|| format!("`{key}` is not in the base scene"))?;
+        cur = cur
+            .get_mut(*p)
+            .and_then(|v| v.as_table_mut())
+            .ok_or_else(|| format!("`{key}` is not in the base scene"))?;
     }
     cur.remove(parts[parts.len() - 1]).map(|_| ()).ok_or_else(|| format!("`{key}` is not in the base scene"))
 }
@@ -287,19 +290,21 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Sweep> {
             (Some(v), None, None) => v,
             (None, Some(l), None) => spaced(path, &at("linspace"), l, false)?,
             (None, None, Some(l)) => spaced(path, &at("logspace"), l, true)?,
-            _ => {
-                return Err(key_error(
-                    path,
-                    format!("axis[{i}]"),
-                    "give exactly one of values = [...], linspace = [start, stop, count], logspace = [start, stop, count]",
-                ))
-            }
+            _ => return Err(key_error(
+                path,
+                format!("axis[{i}]"),
+                "give exactly one of values = [...], linspace = [start, stop, count], logspace = [start, stop, count]",
+            )),
         };
         if values.is_empty() {
             return Err(key_error(path, at("values"), "empty: give at least one value"));
         }
         if let Some(k) = values.iter().position(|v| !finite_value(v)) {
-            return Err(key_error(path, format!("axis[{i}].values[{k}]"), format!("{}: not a finite number", values[k])));
+            return Err(key_error(
+                path,
+                format!("axis[{i}].values[{k}]"),
+                format!("{}: not a finite number", values[k]),
+            ));
         }
         let labels = match a.labels {
             Some(l) if l.len() != values.len() => {
@@ -338,7 +343,11 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Sweep> {
         Combine::Product => {
             let total = axes.iter().try_fold(1usize, |n, a| n.checked_mul(a.values.len()).filter(|&n| n <= MAX_POINTS));
             let Some(total) = total else {
-                return Err(key_error(path, "axis", format!("the product of the axes makes more than {MAX_POINTS} points")));
+                return Err(key_error(
+                    path,
+                    "axis",
+                    format!("the product of the axes makes more than {MAX_POINTS} points"),
+                ));
             };
             (0..total)
                 .map(|mut k| {
@@ -434,7 +443,8 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Sweep> {
 impl Sweep {
     /// The raw table of the base scene.
     pub fn base_table(&self) -> anyhow::Result<toml::Table> {
-        let text = std::fs::read_to_string(&self.base).map_err(|source| Error::Io { file: self.base.clone(), source })?;
+        let text =
+            std::fs::read_to_string(&self.base).map_err(|source| Error::Io { file: self.base.clone(), source })?;
         Ok(parse_table(&text, &self.base)?)
     }
 
@@ -478,7 +488,11 @@ impl Sweep {
                 return Err(key_error(
                     file,
                     format!("axis[{i}].key"),
-                    format!("`{}` is not a key of the scene (see `saltus check {}` for its keys)", a.key, self.base.display()),
+                    format!(
+                        "`{}` is not a key of the scene (see `saltus check {}` for its keys)",
+                        a.key,
+                        self.base.display()
+                    ),
                 ));
             }
         }
@@ -490,6 +504,11 @@ impl Sweep {
 
     /// `name = label` of every axis at `p`.
     pub fn describe(&self, p: &Point) -> String {
-        self.axes.iter().zip(&p.at).map(|(a, &k)| format!("{} = {}", a.name, a.labels[k])).collect::<Vec<_>>().join(", ")
+        self.axes
+            .iter()
+            .zip(&p.at)
+            .map(|(a, &k)| format!("{} = {}", a.name, a.labels[k]))
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 }

@@ -38,8 +38,8 @@ pub use solver::{
     SolverKind, Surface, ELASTIC_PHI_RLP, MAX_TIME,
 };
 pub use tables::{
-    Contact, ContactModel, Drive, Fluid, Meta, NormalForce, Output, Particles, Physics, Reference, ShieldsWeight, MAX_SNAPSHOTS,
-    MAX_TIMESERIES_ROWS, TIMESERIES_ROWS,
+    Contact, ContactModel, Drive, Fluid, Meta, NormalForce, Output, Particles, Physics, Reference, ShieldsWeight,
+    MAX_SNAPSHOTS, MAX_TIMESERIES_ROWS, TIMESERIES_ROWS,
 };
 
 /// Packing the DEM counts the particles of a bed with when `domain.bed_phi` is absent.
@@ -299,9 +299,7 @@ impl Scene {
                 return Err(Error::Key {
                     file: f.into(),
                     key: "domain.cells".into(),
-                    message: format!(
-                        "= {c}, but domain.cell_size makes {n} cells over the column; remove one of them"
-                    ),
+                    message: format!("= {c}, but domain.cell_size makes {n} cells over the column; remove one of them"),
                 })
             }
             _ => self.domain.cells = Some(n),

@@ -72,18 +72,23 @@ pub fn resolve(
     let (theta, drive) = match (physics.shields, physics.drive) {
         (None, None) => {
             if physics.shields_weight.is_some() {
-                return Err(key("physics.shields_weight", "only used with physics.shields; give it or remove this key".into()));
+                return Err(key(
+                    "physics.shields_weight",
+                    "only used with physics.shields; give it or remove this key".into(),
+                ));
             }
             return Ok(());
         }
-        (Some(_), None) => {
-            return Err(key(
-                "physics.drive",
-                "missing; physics.shields needs the quantity it sets: \"water_depth\", \"slope\" or \"pressure_gradient\"".into(),
-            ))
-        }
+        (Some(_), None) => return Err(key(
+            "physics.drive",
+            "missing; physics.shields needs the quantity it sets: \"water_depth\", \"slope\" or \"pressure_gradient\""
+                .into(),
+        )),
         (None, Some(_)) => {
-            return Err(key("physics.shields", "missing; physics.drive says what the Shields number sets, give the number".into()))
+            return Err(key(
+                "physics.shields",
+                "missing; physics.drive says what the Shields number sets, give the number".into(),
+            ))
         }
         (Some(t), Some(d)) => (t, d),
     };
