@@ -179,6 +179,68 @@ pub fn emit(sweep: &Sweep, dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     Ok(files)
 }
 
+/// A point written out for an executor or a scheduler: its resolved scene, its folder,
+/// and whether it finished in an earlier run of the same sweep.
+#[derive(Clone, Debug)]
+pub struct Prepared {
+    /// position in the sweep
+    pub index: usize,
+    /// the resolved scene, `DIR/point_NNNN.toml`
+    pub scene: PathBuf,
+    /// its output folder, `DIR/point_NNNN`
+    pub dir: PathBuf,
+    /// `resume` and its summary says it finished: nothing to run
+    pub finished: bool,
+}
+
+/// [`emit`] for a caller that runs the points itself (the Python `saltus.sweep` with an
+/// executor): with `resume`, the folder must hold this sweep (or nothing), and the points
+/// whose summaries say they finished are marked so.
+pub fn prepare(sweep: &Sweep, dir: &Path, resume: bool) -> anyhow::Result<Vec<Prepared>> {
+    if resume && dir.join(manifest::FILE).is_file() {
+        let base = sweep.base_table()?;
+        let mut hashes = Vec::new();
+        for p in &sweep.points {
+            hashes.push(manifest::hash(sweep.scene(p, &base)?.to_toml()?.as_bytes()));
+        }
+        same_sweep(&Manifest::read(dir)?, &Manifest::new(sweep, hashes), sweep, dir, "--resume")?;
+    }
+    let files = emit(sweep, dir)?;
+    let mut out = Vec::with_capacity(files.len());
+    for (p, scene) in sweep.points.iter().zip(files) {
+        let d = dir.join(p.dir_name());
+        let finished = resume && table::read_summary(&d)?.is_some_and(|s| table::status_of(&s).finished());
+        out.push(Prepared { index: p.index, scene, dir: d, finished });
+    }
+    Ok(out)
+}
+
+/// Refuse a folder whose manifest `old` is not of the sweep whose fresh manifest is
+/// `fresh`, naming the folder, the manifest and the sweep that wrote it.
+pub fn same_sweep(old: &Manifest, fresh: &Manifest, sweep: &Sweep, dir: &Path, what: &str) -> anyhow::Result<()> {
+    if old.sweep_hash == fresh.sweep_hash {
+        return Ok(());
+    }
+    let differ: Vec<String> = old
+        .points
+        .iter()
+        .zip(&fresh.points)
+        .filter(|(a, b)| a.scene_hash != b.scene_hash)
+        .map(|(a, _)| a.dir.clone())
+        .take(5)
+        .collect();
+    anyhow::bail!(
+        "{what} {}: {} was written by another sweep ({}, {} points){}; {} makes {} points: use the sweep that wrote it, or another folder",
+        dir.display(),
+        dir.join(manifest::FILE).display(),
+        old.sweep.display(),
+        old.points.len(),
+        if differ.is_empty() { String::new() } else { format!(", whose scenes differ at {}", differ.join(", ")) },
+        sweep.file.display(),
+        fresh.points.len()
+    )
+}
+
 /// Gather the points of the sweep emitted into `dir` (or run there): each point's status
 /// from its `summary.json`, then the tables and the figure as [`run::run`] writes them.
 pub fn collect(sweep: &Sweep, dir: &Path) -> anyhow::Result<Report> {
@@ -189,17 +251,7 @@ pub fn collect(sweep: &Sweep, dir: &Path) -> anyhow::Result<Report> {
     }
     let fresh = Manifest::new(sweep, hashes);
     let old = Manifest::read(dir)?;
-    if old.sweep_hash != fresh.sweep_hash {
-        anyhow::bail!(
-            "--collect {}: {} was written by another sweep ({}, {} points); {} makes {} points",
-            dir.display(),
-            dir.join(manifest::FILE).display(),
-            old.sweep.display(),
-            old.points.len(),
-            sweep.file.display(),
-            fresh.points.len()
-        );
-    }
+    same_sweep(&old, &fresh, sweep, dir, "--collect")?;
     let mut m = old;
     for p in &mut m.points {
         match table::read_summary(&dir.join(&p.dir))? {

@@ -78,26 +78,7 @@ fn starting_manifest(sweep: &Sweep, out: &Path, fresh: Manifest, resume: bool) -
         return Ok(fresh);
     }
     let old = Manifest::read(out)?;
-    if old.sweep_hash != fresh.sweep_hash {
-        let differ: Vec<String> = old
-            .points
-            .iter()
-            .zip(&fresh.points)
-            .filter(|(a, b)| a.scene_hash != b.scene_hash)
-            .map(|(a, _)| a.dir.clone())
-            .take(5)
-            .collect();
-        bail!(
-            "--resume {}: {} was written by another sweep ({}, {} points){}; {} makes {} points: resume with the sweep that wrote it, or choose another --out",
-            out.display(),
-            file.display(),
-            old.sweep.display(),
-            old.points.len(),
-            if differ.is_empty() { String::new() } else { format!(", whose scenes differ at {}", differ.join(", ")) },
-            sweep.file.display(),
-            fresh.points.len()
-        );
-    }
+    super::same_sweep(&old, &fresh, sweep, out, "--resume")?;
     let mut m = fresh;
     for (new, old) in m.points.iter_mut().zip(old.points) {
         // a finished point is kept only with its summary on disk
