@@ -214,3 +214,56 @@ fn bad_sweeps_are_refused_naming_the_file_and_the_key() {
         assert!(!out.exists(), "{name}: the output folder was made");
     }
 }
+
+/// SIGINT while a point runs: the finished point is kept, the running one writes its
+/// state and is marked interrupted, none other starts, the exit code is 130; `--resume`
+/// then runs only the points that did not finish.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_sweep_keeps_its_finished_points_and_resumes() {
+    let d = tmp_dir("sweep_interrupt");
+    // points that never reach the steady criterion and run to their end time, one at a
+    // time, so that the second is running when the first has finished
+    let file = case02_sweep(
+        &d,
+        "s.toml",
+        "jobs = 1\n[[axis]]\nkey = \"solver.eulerian.end_time\"\nvalues = [3.0e4, 3.1e4, 3.2e4, 3.3e4]\n[[axis]]\nkey = \"solver.eulerian.steady_tolerance\"\nvalues = [1e-30]\n",
+    );
+    let out = d.join("out");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_saltus"))
+        .args(["sweep", file.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let first = out.join("point_0000/summary.json");
+    while !first.is_file() {
+        if let Some(status) = child.try_wait().unwrap() {
+            panic!("the sweep ended before its first point did: {status:?}");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let kill = std::process::Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    assert!(kill.success());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--resume"), "{}", stderr(&o));
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("sweep.json")).unwrap()).unwrap();
+    let status: Vec<&str> =
+        manifest["points"].as_array().unwrap().iter().map(|p| p["status"].as_str().unwrap()).collect();
+    assert_eq!(status[0], "done", "{status:?}");
+    // the second point was running (or had just finished, or not yet started when the
+    // signal came between the two) and the rest never started
+    assert!(matches!(status[1], "interrupted" | "done" | "pending"), "{status:?}");
+    assert!(status[2..].iter().all(|s| *s == "pending"), "{status:?}");
+    if status[1] == "interrupted" {
+        assert_eq!(summary(&out.join("point_0001"))["ending"], "interrupted");
+    }
+    let kept = std::fs::read_to_string(&first).unwrap();
+    let o = saltus(&["sweep", file.to_str().unwrap(), "--out", out.to_str().unwrap(), "--resume"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&first).unwrap(), kept, "the finished point was run again");
+    let (h, rows) = read_table(&out.join("sweep.csv"));
+    assert!(rows.iter().all(|r| cell(&h, r, "status") == "done" && cell(&h, r, "ending") == "end_time"), "{rows:?}");
+}

@@ -56,13 +56,16 @@ pub fn read_mpm(path: &Path) -> anyhow::Result<Vec<(f64, f64)>> {
     Ok(out)
 }
 
-/// Draw `marks` (with error bars), the fit, the classic laws and `data` into `png`.
+/// Draw `marks` (with error bars), the fit, the `laws` (label, a, theta_c) and `data`
+/// into `png`.
+#[allow(clippy::too_many_arguments)]
 pub fn draw(
     title: &str,
     x_desc: &str,
     y_desc: &str,
     marks: &[Mark],
     fit: Option<&Fit>,
+    laws: &[(&str, f64, f64)],
     data: &[(f64, f64)],
     png: &Path,
 ) -> anyhow::Result<()> {
@@ -100,7 +103,7 @@ pub fn draw(
             (y >= y0 && y <= y1).then_some((x, y))
         })
     };
-    for (i, (label, a, c)) in CLASSIC_LAWS.iter().enumerate() {
+    for (i, (label, a, c)) in laws.iter().enumerate() {
         let color = COLORS[(i + 2) % COLORS.len()];
         chart
             .draw_series(LineSeries::new(curve(*a, *c), color.stroke_width(1)))?
@@ -117,8 +120,9 @@ pub fn draw(
     }
     if let Some(f) = fit {
         let color = COLORS[1];
+        let bound = if f.at_bound { ", theta_c at the smallest theta" } else { "" };
         let label = format!(
-            "fit {:.3} (+- {:.2}) (theta - {:.4} (+- {:.4}))^1.5, {} points",
+            "fit {:.3} (+- {:.2}) (theta - {:.4} (+- {:.4}))^1.5, {} points{bound}",
             f.a, f.a_stderr, f.theta_c, f.theta_c_stderr, f.n
         );
         chart

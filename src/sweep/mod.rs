@@ -51,6 +51,7 @@ pub fn finish(
     manifest: Manifest,
     mut warnings: Vec<String>,
     ran: usize,
+    kept: usize,
 ) -> anyhow::Result<Report> {
     let summaries: Vec<Option<table::Fields>> =
         manifest.points.iter().map(|p| table::read_summary(&out.join(&p.dir))).collect::<anyhow::Result<_>>()?;
@@ -67,11 +68,13 @@ pub fn finish(
     let mut fit = None;
     if let Some((x_desc, y_desc, marks)) = figure_marks(sweep, &manifest, &summaries) {
         {
+            let shields =
+                x_desc.contains("shields") || sweep.axes.iter().any(|a| a.name == x_desc && a.key == "physics.shields");
             let min = sweep.figure.fit_min.unwrap_or(FIT_MIN);
             let fitted: Vec<_> = marks.iter().copied().filter(|m| m.1 > min).collect();
-            fit = fit::fit(&fitted);
+            fit = if shields { fit::fit(&fitted) } else { None };
             let data = match &sweep.figure.data {
-                Some(d) => {
+                Some(d) if shields => {
                     let path = sweep.file.parent().unwrap_or(Path::new("")).join(d);
                     if path.is_file() {
                         figure::read_mpm(&path).unwrap_or_else(|e| {
@@ -87,16 +90,17 @@ pub fn finish(
                         Vec::new()
                     }
                 }
-                None => Vec::new(),
+                _ => Vec::new(),
             };
             let png = out.join(figure::FIGURE);
-            match figure::draw(&sweep.meta.name, &x_desc, &y_desc, &marks, fit.as_ref(), &data, &png) {
+            let laws: &[(&str, f64, f64)] = if shields { &figure::CLASSIC_LAWS } else { &[] };
+            match figure::draw(&sweep.meta.name, &x_desc, &y_desc, &marks, fit.as_ref(), laws, &data, &png) {
                 Ok(()) => files.push(png),
                 Err(e) => warnings.push(format!("{}: not drawn: {e:#}", png.display())),
             }
         }
     }
-    Ok(Report { out: out.to_path_buf(), manifest, summaries, files, fit, warnings, ran })
+    Ok(Report { out: out.to_path_buf(), manifest, summaries, files, fit, warnings, ran, kept })
 }
 
 /// The figure's points: x from the axis (or the summary field) the figure names, y the
@@ -265,5 +269,6 @@ pub fn collect(sweep: &Sweep, dir: &Path) -> anyhow::Result<Report> {
         }
     }
     m.write(dir)?;
-    finish(sweep, dir, m, Vec::new(), 0)
+    let kept = m.points.iter().filter(|p| p.status.finished()).count();
+    finish(sweep, dir, m, Vec::new(), 0, kept)
 }

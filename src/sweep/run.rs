@@ -48,8 +48,10 @@ pub struct Report {
     pub fit: Option<super::fit::Fit>,
     /// what did not fail the sweep but should be known
     pub warnings: Vec<String>,
-    /// points run now (not kept from an earlier run)
+    /// points run now
     pub ran: usize,
+    /// points kept from an earlier run
+    pub kept: usize,
 }
 
 impl Report {
@@ -106,9 +108,9 @@ pub fn run(sweep: &Sweep, out: &Path, opts: &Options) -> anyhow::Result<Report> 
         kinds.push(s.solver.kind);
     }
     let manifest = starting_manifest(sweep, out, Manifest::new(sweep, hashes), opts.resume)?;
+    let kept = manifest.points.iter().filter(|p| p.status.finished()).count();
     manifest.write(out)?;
     let todo: VecDeque<usize> = manifest.points.iter().filter(|p| !p.status.finished()).map(|p| p.index).collect();
-    let ran = todo.len();
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let jobs = opts.jobs.or(sweep.jobs).unwrap_or(cores).clamp(1, todo.len().max(1));
     let bar = if opts.progress && !opts.quiet {
@@ -122,7 +124,7 @@ pub fn run(sweep: &Sweep, out: &Path, opts: &Options) -> anyhow::Result<Report> 
             .progress_chars("=> "),
     );
     bar.set_position((sweep.points.len() - todo.len()) as u64);
-    let shared = Mutex::new(Shared { manifest, todo, warnings: Vec::new() });
+    let shared = Mutex::new(Shared { manifest, todo, warnings: Vec::new(), ran: 0 });
     let warm_order = warm::Neighbours::new(sweep);
     std::thread::scope(|scope| {
         for _ in 0..jobs {
@@ -130,15 +132,17 @@ pub fn run(sweep: &Sweep, out: &Path, opts: &Options) -> anyhow::Result<Report> 
         }
     });
     bar.finish_and_clear();
-    let Shared { manifest, warnings, .. } = shared.into_inner().unwrap_or_else(|e| e.into_inner());
+    let Shared { manifest, warnings, ran, .. } = shared.into_inner().unwrap_or_else(|e| e.into_inner());
     manifest.write(out)?;
-    super::finish(sweep, out, manifest, warnings, ran)
+    super::finish(sweep, out, manifest, warnings, ran, kept)
 }
 
 struct Shared {
     manifest: Manifest,
     todo: VecDeque<usize>,
     warnings: Vec<String>,
+    /// points started
+    ran: usize,
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -160,6 +164,7 @@ fn worker(
         let (i, restart, warm_from) = {
             let mut s = shared.lock().unwrap_or_else(|e| e.into_inner());
             let Some(i) = s.todo.pop_front() else { return };
+            s.ran += 1;
             let entry = &mut s.manifest.points[i];
             let dir = out.join(&entry.dir);
             // an interrupted DEM point continues from its checkpoint
@@ -272,7 +277,7 @@ impl Report {
             m.name,
             m.points.len(),
             self.ran,
-            m.points.len() - self.ran,
+            self.kept,
             m.points.iter().filter(|p| p.status == Status::Done).count()
         );
         for (p, sm) in m.points.iter().zip(&self.summaries) {
