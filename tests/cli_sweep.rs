@@ -267,3 +267,56 @@ fn an_interrupted_sweep_keeps_its_finished_points_and_resumes() {
     let (h, rows) = read_table(&out.join("sweep.csv"));
     assert!(rows.iter().all(|r| cell(&h, r, "status") == "done" && cell(&h, r, "ending") == "end_time"), "{rows:?}");
 }
+
+/// The shipped DEM sweeps load whole (every point's scene resolved and checked, nothing
+/// run): figure 6's Shields numbers give the water depths h_w = 15 theta d of the
+/// bed-normal definition and the fluid cells of the hand-written depth list
+/// (sweep3d_drw.toml); table 4's points carry their own averaging windows.
+#[test]
+fn the_shipped_dem_sweeps_resolve_to_the_hand_written_points() {
+    let d = tmp_dir("sweep_shipped_dem");
+    let fig6 = d.join("fig6");
+    let o = saltus(&["sweep", "cases/maurin2015/figure6_sweep.toml", "--emit", fig6.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let hand: toml::Table = std::fs::read_to_string("cases/maurin2015/sweep3d_drw.toml").unwrap().parse().unwrap();
+    let hand_cells: Vec<(f64, i64)> = hand["variant"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| {
+            let set: Vec<&str> = v["set"].as_array().unwrap().iter().map(|s| s.as_str().unwrap()).collect();
+            let num = |k: &str| set.iter().find_map(|s| s.strip_prefix(k)).unwrap().to_string();
+            (num("domain.water_depth=").parse().unwrap(), num("solver.lagrangian.cells=").parse().unwrap())
+        })
+        .collect();
+    let thetas = [0.03, 0.04, 0.05, 0.07, 0.08, 0.09, 0.1, 0.12, 0.15, 0.2, 0.3];
+    let mut matched = 0;
+    for (k, fluct) in ["drw", "none"].iter().enumerate() {
+        for (j, theta) in thetas.iter().enumerate() {
+            let f = fig6.join(format!("point_{:04}.toml", k * thetas.len() + j));
+            let s: toml::Table = std::fs::read_to_string(&f).unwrap().parse().unwrap();
+            let h = s["domain"]["water_depth"].as_float().unwrap();
+            assert!((h - 15.0 * theta * 6e-3).abs() < 1e-12, "{}: {h}", f.display());
+            assert_eq!(s["closures"]["fluctuation"]["type"].as_str(), Some(*fluct));
+            let cells = s["solver"]["lagrangian"]["cells"].as_integer().unwrap();
+            if let Some((_, c)) = hand_cells.iter().find(|(w, _)| (w - h).abs() < 1e-12) {
+                assert_eq!(cells, *c, "{}", f.display());
+                matched += 1;
+            }
+        }
+    }
+    assert_eq!(matched, 2 * 8, "the eight depths of sweep3d_drw.toml among the eleven");
+    let t4 = d.join("t4");
+    let o = saltus(&["sweep", "cases/revil_baudard2015/table4.toml", "--emit", t4.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s: toml::Table = std::fs::read_to_string(t4.join("point_0000.toml")).unwrap().parse().unwrap();
+    assert_eq!(s["physics"]["pressure_gradient"].as_float(), Some(11.7007));
+    assert_eq!(s["solver"]["lagrangian"]["stats_start"].as_float(), Some(55.0));
+    assert_eq!(
+        std::fs::read_dir(&t4)
+            .unwrap()
+            .filter(|e| e.as_ref().unwrap().path().extension().is_some_and(|x| x == "toml"))
+            .count(),
+        6
+    );
+}

@@ -171,8 +171,9 @@ class SweepResult:
         rows: its rows (strings, as in the file).
         out: the sweep's folder.
         files: ``sweep.csv``, ``sweep_seeds.csv`` (with a seed axis), the figure.
-        fit: the 3/2-law fit ``{"a", "a_stderr", "theta_c", "theta_c_stderr", "n",
-            "rms", "at_bound"}``, or None.
+        fits: the 3/2-law fit of each series of the figure (one per value of the axes
+            other than the swept Shields number and the seed): ``{"series", "a",
+            "a_stderr", "theta_c", "theta_c_stderr", "n", "rms", "at_bound"}``.
         warnings: what did not fail the sweep.
         errors: per point that raised in the executor, its message.
     """
@@ -184,7 +185,7 @@ class SweepResult:
     rows: List[List[str]]
     out: Path
     files: List[Path]
-    fit: Optional[Dict[str, Any]] = None
+    fits: List[Dict[str, Any]] = field(default_factory=list)
     warnings: List[str] = field(default_factory=list)
     errors: Dict[int, str] = field(default_factory=dict)
 
@@ -215,7 +216,7 @@ class SweepResult:
         """The table as an xarray Dataset: for a product of axes, one dimension per axis
         (its values as the coordinate) and every numeric summary field a variable over
         them; for a zip, one dimension ``point`` with the axes as coordinates on it.
-        Units in the variables' attributes, the sweep's name and fit as attributes."""
+        Units in the variables' attributes, the sweep's name and fits as attributes."""
         xr = _xarray()
         names = [a["name"] for a in self.axes]
         skip = set(names) | {"point", "dir"}
@@ -227,8 +228,8 @@ class SweepResult:
             return vals if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in vals) else a["labels"]
 
         attrs: Dict[str, Any] = {"name": self.name, "combine": self.combine}
-        if self.fit:
-            attrs.update({f"fit_{k}": (int(v) if isinstance(v, bool) else v) for k, v in self.fit.items()})
+        for n, f in enumerate(self.fits):
+            attrs.update({f"fit{n}_{k}": (int(v) if isinstance(v, bool) else v) for k, v in f.items()})
         if self.combine == "zip" or len(self.rows) != int(np.prod([len(a["values"]) for a in self.axes])):
             coords = {a["name"]: ("point", [coord(a)[a["labels"].index(r[self.header.index(a["name"])])] for r in self.rows]) for a in self.axes}
             data = {h: _var(xr, ("point",), self.column(h), h) for h in numeric}
@@ -311,7 +312,7 @@ def sweep(
         rows=t["rows"],
         out=out_dir,
         files=[Path(f) for f in t["files"]],
-        fit=t["fit"],
+        fits=list(t["fits"]),
         warnings=list(t["warnings"]),
         errors=errors,
     )

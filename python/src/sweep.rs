@@ -49,8 +49,8 @@ pub fn sweep_prepare<'py>(
 
 /// Gather the points run in `out` into `sweep.csv` (and `sweep_seeds.csv`, the figure),
 /// and return the table: `name`, `combine`, `axes` (key, name, values, labels),
-/// `header`, `rows` (strings, as in the CSV), `files`, `fit` (None without one) and
-/// `warnings`.
+/// `header`, `rows` (strings, as in the CSV), `files`, `fits` (one per series of the
+/// figure, with its `series` label) and `warnings`.
 #[pyfunction]
 #[pyo3(signature = (file, set, out))]
 pub fn sweep_collect<'py>(
@@ -84,9 +84,11 @@ pub fn sweep_collect<'py>(
     d.set_item("header", header)?;
     d.set_item("rows", rows)?;
     d.set_item("files", report.files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>())?;
-    let fit = match &report.fit {
-        Some(f) => {
+    let fits = PyList::empty(py);
+    for (label, f) in &report.fits {
+        {
             let x = PyDict::new(py);
+            x.set_item("series", label)?;
             x.set_item("a", f.a)?;
             x.set_item("a_stderr", f.a_stderr)?;
             x.set_item("theta_c", f.theta_c)?;
@@ -94,11 +96,10 @@ pub fn sweep_collect<'py>(
             x.set_item("n", f.n)?;
             x.set_item("rms", f.rms)?;
             x.set_item("at_bound", f.at_bound)?;
-            x.into_any()
+            fits.append(x)?;
         }
-        None => py.None().into_bound(py),
-    };
-    d.set_item("fit", fit)?;
+    }
+    d.set_item("fits", fits)?;
     d.set_item("warnings", &report.warnings)?;
     Ok(d)
 }

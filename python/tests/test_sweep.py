@@ -49,7 +49,7 @@ def test_the_thread_pool_sweep_gives_the_command_lines_table(tmp_path, cli):
     assert [row["qs_star"] for row in rows] == [row[r.header.index("qs_star")] for row in r.rows]
     assert list(r.column("theta")) == [0.2, 0.4, 0.6, 0.8, 1.0]
     assert all(row[r.header.index("status")] == "done" for row in r.rows)
-    assert r.fit is not None and r.fit["n"] == 5
+    assert len(r.fits) == 1 and r.fits[0]["n"] == 5 and r.fits[0]["series"] == ""
 
 
 def test_a_process_pool_runs_the_points(tmp_path):

@@ -24,8 +24,7 @@ pub const CLASSIC_LAWS: [(&str, f64, f64); 3] = [
     ("Wilson 11.8 (theta - 0.04)^1.5", 11.8, 0.04),
 ];
 
-/// One point of the figure: x, y, the error of y.
-pub type Mark = (f64, f64, Option<f64>);
+use super::series::Series;
 
 /// A tick label: a few digits without trailing zeros, powers of ten far from 1.
 fn tidy(v: f64) -> String {
@@ -56,21 +55,27 @@ pub fn read_mpm(path: &Path) -> anyhow::Result<Vec<(f64, f64)>> {
     Ok(out)
 }
 
-/// Draw `marks` (with error bars), the fit, the `laws` (label, a, theta_c) and `data`
-/// into `png`.
+/// Draw each series (with error bars) with its fit, the `laws` (label, a, theta_c) and
+/// `data` into `png`.
 #[allow(clippy::too_many_arguments)]
 pub fn draw(
     title: &str,
     x_desc: &str,
     y_desc: &str,
-    marks: &[Mark],
-    fit: Option<&Fit>,
+    series: &[Series],
+    fits: &[(String, Fit)],
     laws: &[(&str, f64, f64)],
     data: &[(f64, f64)],
     png: &Path,
 ) -> anyhow::Result<()> {
     register_font()?;
-    let pos: Vec<Mark> = marks.iter().copied().filter(|(x, y, _)| *x > 0.0 && *y > 0.0).collect();
+    let all: Vec<(usize, (f64, f64, Option<f64>))> = series
+        .iter()
+        .enumerate()
+        .flat_map(|(k, s)| s.marks.iter().map(move |m| (k, *m)))
+        .filter(|(_, (x, y, _))| *x > 0.0 && *y > 0.0)
+        .collect();
+    let pos: Vec<_> = all.iter().map(|(_, m)| *m).collect();
     if pos.is_empty() {
         bail!("no point with {x_desc} > 0 and {y_desc} > 0 to draw on log axes");
     }
@@ -118,29 +123,34 @@ pub fn draw(
             .label("Meyer-Peter & Mueller 1948 flume data (Recking 2010)")
             .legend(move |(x, y)| Cross::new((x + 10, y), 3, color.stroke_width(1)));
     }
-    if let Some(f) = fit {
-        let color = COLORS[1];
-        let bound = if f.at_bound { ", theta_c at the smallest theta" } else { "" };
-        let label = format!(
-            "fit {:.3} (+- {:.2}) (theta - {:.4} (+- {:.4}))^1.5, {} points{bound}",
-            f.a, f.a_stderr, f.theta_c, f.theta_c_stderr, f.n
-        );
-        chart
-            .draw_series(LineSeries::new(curve(f.a, f.theta_c), color.stroke_width(2)))?
-            .label(label)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
-    }
-    let color = COLORS[0];
-    for &(x, y, e) in &pos {
-        if let Some(e) = e.filter(|e| *e > 0.0) {
-            let lo = (y - e).max(y0);
-            chart.draw_series(LineSeries::new([(x, lo), (x, (y + e).min(y1))], color.stroke_width(1)))?;
+    // one colour per series: its points and its fit
+    let series_color = |k: usize| if k == 0 { COLORS[0] } else { COLORS[(k + 4) % COLORS.len()] };
+    for (k, s) in series.iter().enumerate() {
+        let color = series_color(k);
+        let name = if s.label.is_empty() { "this sweep".to_string() } else { s.label.clone() };
+        if let Some((_, f)) = fits.iter().find(|(l, _)| l == &s.label) {
+            let bound = if f.at_bound { ", theta_c at the smallest theta" } else { "" };
+            let label = format!(
+                "{name}: {:.3} (+- {:.2}) (theta - {:.4} (+- {:.4}))^1.5, {} points{bound}",
+                f.a, f.a_stderr, f.theta_c, f.theta_c_stderr, f.n
+            );
+            chart
+                .draw_series(LineSeries::new(curve(f.a, f.theta_c), color.stroke_width(2)))?
+                .label(label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
         }
+        let mine: Vec<(f64, f64, Option<f64>)> = all.iter().filter(|(j, _)| *j == k).map(|(_, m)| *m).collect();
+        for &(x, y, e) in &mine {
+            if let Some(e) = e.filter(|e| *e > 0.0) {
+                let lo = (y - e).max(y0);
+                chart.draw_series(LineSeries::new([(x, lo), (x, (y + e).min(y1))], color.stroke_width(1)))?;
+            }
+        }
+        chart
+            .draw_series(mine.iter().map(|&(x, y, _)| Circle::new((x, y), 4, color.filled())))?
+            .label(name)
+            .legend(move |(x, y)| Circle::new((x + 10, y), 4, color.filled()));
     }
-    chart
-        .draw_series(pos.iter().map(|&(x, y, _)| Circle::new((x, y), 4, color.filled())))?
-        .label("this sweep")
-        .legend(move |(x, y)| Circle::new((x + 10, y), 4, color.filled()));
     chart
         .configure_series_labels()
         .position(SeriesLabelPosition::UpperLeft)

@@ -23,6 +23,7 @@ pub mod figure;
 pub mod fit;
 pub mod manifest;
 pub mod run;
+pub mod series;
 pub mod spec;
 pub mod table;
 pub mod warm;
@@ -65,93 +66,49 @@ pub fn finish(
         table::write_csv(&f, &h, &r)?;
         files.push(f);
     }
-    let mut fit = None;
-    if let Some((x_desc, y_desc, marks)) = figure_marks(sweep, &manifest, &summaries) {
-        {
-            let shields =
-                x_desc.contains("shields") || sweep.axes.iter().any(|a| a.name == x_desc && a.key == "physics.shields");
-            let min = sweep.figure.fit_min.unwrap_or(FIT_MIN);
-            let fitted: Vec<_> = marks.iter().copied().filter(|m| m.1 > min).collect();
-            fit = if shields { fit::fit(&fitted) } else { None };
-            let data = match &sweep.figure.data {
-                Some(d) if shields => {
-                    let path = sweep.file.parent().unwrap_or(Path::new("")).join(d);
-                    if path.is_file() {
-                        figure::read_mpm(&path).unwrap_or_else(|e| {
-                            warnings.push(format!("{e:#}; the figure is drawn without the flume data"));
-                            Vec::new()
-                        })
-                    } else {
-                        warnings.push(format!(
-                            "{}: key `figure.data`: {} is not there; the figure is drawn without the flume data",
-                            sweep.file.display(),
-                            path.display()
-                        ));
-                        Vec::new()
-                    }
+    let mut fits = Vec::new();
+    if let Some((x_desc, y_desc, series)) = series::of(sweep, &manifest, &summaries) {
+        let shields =
+            x_desc.contains("shields") || sweep.axes.iter().any(|a| a.name == x_desc && a.key == "physics.shields");
+        let min = sweep.figure.fit_min.unwrap_or(FIT_MIN);
+        if shields {
+            for s in &series {
+                let fitted: Vec<_> = s.marks.iter().copied().filter(|m| m.1 > min).collect();
+                if let Some(f) = fit::fit(&fitted) {
+                    fits.push((s.label.clone(), f));
                 }
-                _ => Vec::new(),
-            };
-            let png = out.join(figure::FIGURE);
-            let laws: &[(&str, f64, f64)] = if shields { &figure::CLASSIC_LAWS } else { &[] };
-            match figure::draw(&sweep.meta.name, &x_desc, &y_desc, &marks, fit.as_ref(), laws, &data, &png) {
-                Ok(()) => files.push(png),
-                Err(e) => warnings.push(format!("{}: not drawn: {e:#}", png.display())),
             }
+            let f = out.join(series::FITS);
+            series::write_fits(&f, &fits)?;
+            files.push(f);
+        }
+        let data = match &sweep.figure.data {
+            Some(d) if shields => {
+                let path = sweep.file.parent().unwrap_or(Path::new("")).join(d);
+                if path.is_file() {
+                    figure::read_mpm(&path).unwrap_or_else(|e| {
+                        warnings.push(format!("{e:#}; the figure is drawn without the flume data"));
+                        Vec::new()
+                    })
+                } else {
+                    warnings.push(format!(
+                        "{}: key `figure.data`: {} is not there; the figure is drawn without the flume data",
+                        sweep.file.display(),
+                        path.display()
+                    ));
+                    Vec::new()
+                }
+            }
+            _ => Vec::new(),
+        };
+        let png = out.join(figure::FIGURE);
+        let laws: &[(&str, f64, f64)] = if shields { &figure::CLASSIC_LAWS } else { &[] };
+        match figure::draw(&sweep.meta.name, &x_desc, &y_desc, &series, &fits, laws, &data, &png) {
+            Ok(()) => files.push(png),
+            Err(e) => warnings.push(format!("{}: not drawn: {e:#}", png.display())),
         }
     }
-    Ok(Report { out: out.to_path_buf(), manifest, summaries, files, fit, warnings, ran, kept })
-}
-
-/// The figure's points: x from the axis (or the summary field) the figure names, y the
-/// summary field (qs* by default) of every done point, pooled over the seeds of an
-/// ensemble, with its error: the run's own (`<y>_stderr`) or, pooled, the larger of the
-/// spread across seeds and the pooled run errors. `None` without a numeric axis.
-fn figure_marks(
-    sweep: &Sweep,
-    m: &Manifest,
-    summaries: &[Option<table::Fields>],
-) -> Option<(String, String, Vec<figure::Mark>)> {
-    let y = sweep.figure.y.clone().unwrap_or_else(|| "qs_star".into());
-    let axis = match &sweep.figure.x {
-        Some(name) => sweep.axes.iter().position(|a| &a.name == name)?,
-        None => sweep.axes.iter().position(|a| !a.is_seed() && (0..a.values.len()).all(|k| a.number(k).is_some()))?,
-    };
-    let x_of = |i: usize| -> Option<f64> {
-        match &sweep.figure.x_field {
-            Some(f) => summaries[i].as_ref()?.number(f),
-            None => sweep.axes[axis].number(sweep.points[i].at[axis]),
-        }
-    };
-    let err_key = format!("{y}_stderr");
-    let done = |i: usize| m.points[i].status == Status::Done;
-    let marks = match table::seed_groups(m) {
-        Some(groups) => groups
-            .iter()
-            .filter_map(|g| {
-                let pts: Vec<usize> = g.points.iter().copied().filter(|&i| done(i)).collect();
-                let xs: Vec<f64> = pts.iter().filter_map(|&i| x_of(i)).collect();
-                let ys: Vec<f64> = pts.iter().filter_map(|&i| summaries[i].as_ref()?.number(&y)).collect();
-                let es: Vec<f64> = pts.iter().filter_map(|&i| summaries[i].as_ref()?.number(&err_key)).collect();
-                let px = table::pool(&xs)?;
-                let py = table::pool(&ys)?;
-                let e = match (py.sem, table::pool_errors(&es)) {
-                    (Some(a), Some(b)) => Some(a.max(b)),
-                    (a, b) => a.or(b),
-                };
-                Some((px.mean, py.mean, e))
-            })
-            .collect(),
-        None => (0..m.points.len())
-            .filter(|&i| done(i))
-            .filter_map(|i| {
-                let s = summaries[i].as_ref()?;
-                Some((x_of(i)?, s.number(&y)?, s.number(&err_key)))
-            })
-            .collect(),
-    };
-    let x_desc = sweep.figure.x_field.clone().unwrap_or_else(|| sweep.axes[axis].name.clone());
-    Some((x_desc, y, marks))
+    Ok(Report { out: out.to_path_buf(), manifest, summaries, files, fits, warnings, ran, kept })
 }
 
 /// Write one resolved scene per point, `DIR/point_NNNN.toml` (its `output.dir` the

@@ -44,8 +44,8 @@ pub struct Report {
     pub summaries: Vec<Option<Fields>>,
     /// `sweep.csv`, `sweep_seeds.csv` (with a seed axis), the figure
     pub files: Vec<PathBuf>,
-    /// the 3/2-law fit of the figure, when there is one
-    pub fit: Option<super::fit::Fit>,
+    /// the 3/2-law fit of each series of the figure (its label, the fit)
+    pub fits: Vec<(String, super::fit::Fit)>,
     /// what did not fail the sweep but should be known
     pub warnings: Vec<String>,
     /// points run now
@@ -300,10 +300,11 @@ impl Report {
                 serde_json::to_value(p.status).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default();
             let _ = writeln!(s, "  {}  {}  {st:<11}  {q}", p.dir, values.join(", "));
         }
-        if let Some(f) = &self.fit {
+        for (label, f) in &self.fits {
+            let of = if label.is_empty() { String::new() } else { format!(" ({label})") };
             let _ = writeln!(
                 s,
-                "3/2-law fit over {} points: qs* = {:.4} (+- {:.4}) (x - {:.5} (+- {:.5}))^1.5, rms {:.3e}",
+                "3/2-law fit{of} over {} points: qs* = {:.4} (+- {:.4}) (theta - {:.5} (+- {:.5}))^1.5, rms {:.3e}",
                 f.n, f.a, f.a_stderr, f.theta_c, f.theta_c_stderr, f.rms
             );
             if f.at_bound {
