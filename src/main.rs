@@ -265,6 +265,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let settings = saltus::runner::RunSettings {
                 restart,
                 log_every: (!quiet).then(|| std::time::Duration::from_secs_f64(log_interval)),
+                warm_start: None,
             };
             let outcome = saltus::runner::run_scene(&s, &out, &bar, &settings);
             if !quiet {

@@ -39,11 +39,13 @@ pub struct RunSettings {
     pub restart: Option<PathBuf>,
     /// wall time between two progress lines on a hidden bar; `None`: no lines (`--quiet`)
     pub log_every: Option<Duration>,
+    /// start from these profiles (a sweep's warm start) instead of the initial state
+    pub warm_start: Option<saltus_solvers::Profiles>,
 }
 
 impl Default for RunSettings {
     fn default() -> Self {
-        Self { restart: None, log_every: Some(Duration::from_secs_f64(LOG_INTERVAL)) }
+        Self { restart: None, log_every: Some(Duration::from_secs_f64(LOG_INTERVAL)), warm_start: None }
     }
 }
 
@@ -286,7 +288,8 @@ pub fn run_scene_with(
         }
         Control::Continue
     };
-    let options = saltus_solvers::RunOptions { restart: settings.restart.clone() };
+    let options =
+        saltus_solvers::RunOptions { restart: settings.restart.clone(), warm_start: settings.warm_start.clone() };
     let result = saltus_solvers::run_with(scene, out, &mut observer, &options);
     bar.finish_and_clear();
     let run = result?;

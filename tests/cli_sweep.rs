@@ -320,3 +320,38 @@ fn the_shipped_dem_sweeps_resolve_to_the_hand_written_points() {
         6
     );
 }
+
+/// Warm starts: each Eulerian point after the first starts from its neighbour's final
+/// profiles, reaches the same steady state (the steady criterion's 1e-6 of qs*, here to
+/// 1e-5) in fewer steps, and gives the same numbers on one job as on two (the chain of
+/// neighbours fixes which state each point starts from).
+#[test]
+fn warm_started_points_reach_the_same_steady_state_in_fewer_steps() {
+    let d = tmp_dir("sweep_warm");
+    let axes = "[[axis]]\nkey = \"physics.shields\"\nvalues = [0.2, 0.4, 0.6, 0.8]\n";
+    let cold = case02_sweep(&d, "cold.toml", axes);
+    let warm = case02_sweep(&d, "warm.toml", &format!("warm_start = true\n{axes}"));
+    let run = |file: &Path, out: &str, jobs: &str| {
+        let o =
+            saltus(&["sweep", file.to_str().unwrap(), "--out", d.join(out).to_str().unwrap(), "--jobs", jobs, "-q"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        read_table(&d.join(out).join("sweep.csv"))
+    };
+    let (hc, rc) = run(&cold, "cold", "2");
+    let (hw, rw) = run(&warm, "warm", "2");
+    let (h1, r1) = run(&warm, "warm1", "1");
+    let num = |h: &[String], r: &[String], c: &str| cell(h, r, c).parse::<f64>().unwrap();
+    let (mut steps_cold, mut steps_warm) = (0.0, 0.0);
+    for k in 0..4 {
+        assert_eq!(cell(&hw, &rw[k], "status"), "done");
+        assert_eq!(cell(&hw, &rw[k], "ending"), "steady");
+        let from = cell(&hw, &rw[k], "warm_start_from");
+        assert_eq!(from, if k == 0 { String::new() } else { format!("point_{:04}", k - 1) });
+        let (qc, qw) = (num(&hc, &rc[k], "qs_star"), num(&hw, &rw[k], "qs_star"));
+        assert!((qw - qc).abs() <= 1e-5 * qc, "point {k}: warm {qw}, cold {qc}");
+        assert_eq!(cell(&hw, &rw[k], "qs_star"), cell(&h1, &r1[k], "qs_star"), "point {k}: two jobs against one");
+        steps_cold += num(&hc, &rc[k], "steps");
+        steps_warm += num(&hw, &rw[k], "steps");
+    }
+    assert!(steps_warm < steps_cold, "{steps_warm} steps warm, {steps_cold} cold");
+}

@@ -279,6 +279,7 @@ fn run<'py>(
         let settings = runner::RunSettings {
             restart: restart.clone(),
             log_every: (!quiet).then(|| std::time::Duration::from_secs_f64(runner::LOG_INTERVAL)),
+            warm_start: None,
         };
         runner::run_scene_with(&s, &out, &bar, &settings, &mut stop)
     });

@@ -79,6 +79,9 @@ pub struct RunOptions {
     /// continue from the checkpoint in this folder (or this file) instead of the scene's
     /// initial state ([`run::checkpoint`])
     pub restart: Option<PathBuf>,
+    /// start from these profiles (another run's final state, [`Stepper::warm_start`])
+    /// instead of the scene's initial state; not with `restart`
+    pub warm_start: Option<Profiles>,
 }
 
 /// Run `scene`, writing its outputs into `out`. `observer` sees every unit of work and
@@ -128,6 +131,15 @@ pub fn run_with(
             )));
         }
         stepper.restore(&r.state).map_err(fail)?;
+    }
+    if let Some(p) = &options.warm_start {
+        if restart.is_some() {
+            return Err(Error::Invalid(format!(
+                "{}: a run restarts from a checkpoint or starts warm, not both",
+                scene.path.display()
+            )));
+        }
+        stepper.warm_start(p).map_err(|m| Error::Invalid(format!("{}: warm start: {m}", scene.path.display())))?;
     }
     let mut recorder = run::Recorder::start(out, scene, stepper.as_ref(), restart.as_ref())?;
     stepper.set_output_dir(out);

@@ -12,7 +12,6 @@ use std::time::Instant;
 
 use anyhow::{bail, Context};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use saltus_core::scene::SolverKind;
 
 use super::manifest::{hash, Manifest, Status};
 use super::spec::Sweep;
@@ -101,11 +100,11 @@ pub fn run(sweep: &Sweep, out: &Path, opts: &Options) -> anyhow::Result<Report> 
     std::fs::create_dir_all(out).with_context(|| format!("{}: cannot create", out.display()))?;
     let base = sweep.base_table()?;
     let mut hashes = Vec::with_capacity(sweep.points.len());
-    let mut kinds = Vec::with_capacity(sweep.points.len());
+    let mut warm = Vec::with_capacity(sweep.points.len());
     for p in &sweep.points {
         let s = sweep.scene(p, &base)?;
         hashes.push(hash(s.to_toml()?.as_bytes()));
-        kinds.push(s.solver.kind);
+        warm.push(warm::can_start_warm(&s));
     }
     let manifest = starting_manifest(sweep, out, Manifest::new(sweep, hashes), opts.resume)?;
     let kept = manifest.points.iter().filter(|p| p.status.finished()).count();
@@ -125,10 +124,11 @@ pub fn run(sweep: &Sweep, out: &Path, opts: &Options) -> anyhow::Result<Report> 
     );
     bar.set_position((sweep.points.len() - todo.len()) as u64);
     let shared = Mutex::new(Shared { manifest, todo, warnings: Vec::new(), ran: 0 });
-    let warm_order = warm::Neighbours::new(sweep);
+    let chains = warm::Chains::new(sweep);
+    let ctx = Work { sweep, out, base: &base, warm: &warm, chains: &chains, bar: &bar, opts };
     std::thread::scope(|scope| {
         for _ in 0..jobs {
-            scope.spawn(|| worker(sweep, out, &base, &kinds, &shared, &bar, opts, &warm_order));
+            scope.spawn(|| worker(&ctx, &shared));
         }
     });
     bar.finish_and_clear();
@@ -145,17 +145,23 @@ struct Shared {
     ran: usize,
 }
 
-#[allow(clippy::too_many_arguments)]
-fn worker(
-    sweep: &Sweep,
-    out: &Path,
-    base: &toml::Table,
-    kinds: &[SolverKind],
-    shared: &Mutex<Shared>,
-    bar: &ProgressBar,
-    opts: &Options,
-    warm_order: &warm::Neighbours,
-) {
+/// What every worker reads.
+struct Work<'a> {
+    sweep: &'a Sweep,
+    out: &'a Path,
+    base: &'a toml::Table,
+    /// per point, whether its scene can start warm
+    warm: &'a [bool],
+    chains: &'a warm::Chains,
+    bar: &'a ProgressBar,
+    opts: &'a Options,
+}
+
+/// Wall time a worker waits before looking again for a point whose parent has finished.
+const WAIT: std::time::Duration = std::time::Duration::from_millis(5);
+
+fn worker(ctx: &Work, shared: &Mutex<Shared>) {
+    let Work { sweep, out, base, warm, chains, bar, opts } = *ctx;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build();
     loop {
         if runner::interrupted() {
@@ -163,7 +169,21 @@ fn worker(
         }
         let (i, restart, warm_from) = {
             let mut s = shared.lock().unwrap_or_else(|e| e.into_inner());
-            let Some(i) = s.todo.pop_front() else { return };
+            if s.todo.is_empty() {
+                return;
+            }
+            // the next point whose parent (a warm start's) is settled
+            let ready = s.todo.iter().position(|&i| {
+                chains
+                    .parent(i)
+                    .is_none_or(|p| !matches!(s.manifest.points[p].status, Status::Pending | Status::Running))
+            });
+            let Some(k) = ready else {
+                drop(s);
+                std::thread::sleep(WAIT);
+                continue;
+            };
+            let Some(i) = s.todo.remove(k) else { return };
             s.ran += 1;
             let entry = &mut s.manifest.points[i];
             let dir = out.join(&entry.dir);
@@ -172,9 +192,10 @@ fn worker(
                 && dir.join(saltus_solvers::run::checkpoint::FILE).is_file())
             .then_some(dir);
             entry.status = Status::Running;
-            let warm_from = (sweep.warm_start && kinds[i] == SolverKind::Eulerian && restart.is_none())
-                .then(|| warm_order.nearest_done(i, &s.manifest))
-                .flatten();
+            let warm_from = chains
+                .parent(i)
+                .filter(|&p| warm[i] && restart.is_none() && s.manifest.points[p].status == Status::Done)
+                .map(|p| s.manifest.points[p].dir.clone());
             let _ = s.manifest.write(out);
             (i, restart, warm_from)
         };
@@ -247,7 +268,7 @@ fn run_point(
     warm_from: Option<PathBuf>,
 ) -> anyhow::Result<PointResult> {
     let scene = sweep.scene(p, base)?;
-    let settings = runner::RunSettings { restart, log_every: None };
+    let settings = runner::RunSettings { restart, log_every: None, warm_start: None };
     let bar = ProgressBar::hidden();
     let mut stop = |_: &saltus_solvers::Progress| runner::interrupted();
     let outcome = match &warm_from {

@@ -49,6 +49,10 @@ impl Stepper for Eulerian<'_> {
         "eulerian"
     }
 
+    fn warm_start(&mut self, profiles: &crate::output::Profiles) -> Result<(), String> {
+        self.warm_start_from(profiles)
+    }
+
     fn step(&mut self) -> Option<Ending> {
         if let Some(e) = self.ending() {
             return Some(e);
