@@ -68,7 +68,7 @@ fn stop_and_restart(name: &str, phase: Phase, at: f64, extra: &[&str]) {
     let first = saltus_solvers::run(&s, &parts, &mut stop).expect("an interruption is an outcome");
     assert_eq!(first.ending.name(), "interrupted");
     assert!(parts.join("checkpoint.bin").is_file());
-    let opts = RunOptions { restart: Some(parts.clone()) };
+    let opts = RunOptions { restart: Some(parts.clone()), ..RunOptions::default() };
     let second = saltus_solvers::run_with(&s, &parts, &mut Quiet, &opts).expect("restarts");
     assert_eq!(second.ending.name(), "end_time");
 
@@ -136,7 +136,7 @@ fn a_periodic_checkpoint_restarts_a_killed_run() {
     };
     saltus_solvers::run(&s, &parts, &mut stop).expect("stops");
     std::fs::write(parts.join("checkpoint.bin"), kept.expect("checkpoint kept")).expect("write");
-    let opts = RunOptions { restart: Some(parts.clone()) };
+    let opts = RunOptions { restart: Some(parts.clone()), ..RunOptions::default() };
     saltus_solvers::run_with(&s, &parts, &mut Quiet, &opts).expect("restarts");
     assert_eq!(read(&whole, "profiles.csv"), read(&parts, "profiles.csv"));
     assert_eq!(summary(&whole), summary(&parts));
@@ -150,7 +150,7 @@ fn a_restart_from_another_scene_or_a_bad_checkpoint_is_refused_by_name() {
     let s = scene(&["solver.lagrangian.end_time=0.02"]);
     let out = tmp_out("refused");
     saltus_solvers::run(&s, &out, &mut Quiet).expect("runs");
-    let opts = RunOptions { restart: Some(out.clone()) };
+    let opts = RunOptions { restart: Some(out.clone()), ..RunOptions::default() };
     // the end time, the output and the thread count may change
     let longer =
         scene(&["solver.lagrangian.end_time=0.03", "solver.lagrangian.threads=1", "output.snapshot_interval=0"]);
@@ -170,7 +170,7 @@ fn a_restart_from_another_scene_or_a_bad_checkpoint_is_refused_by_name() {
     std::fs::write(out.join("checkpoint.bin"), &bytes[..bytes.len() - 100]).expect("write");
     let e = saltus_solvers::run_with(&s, &out, &mut Quiet, &opts).expect_err("refused").to_string();
     assert!(e.contains("checkpoint.bin") && e.contains("truncated"), "{e}");
-    let missing = RunOptions { restart: Some(out.join("nowhere")) };
+    let missing = RunOptions { restart: Some(out.join("nowhere")), ..RunOptions::default() };
     let e = saltus_solvers::run_with(&s, &out, &mut Quiet, &missing).expect_err("refused").to_string();
     assert!(e.contains("nowhere"), "{e}");
     let _ = std::fs::remove_dir_all(&out);

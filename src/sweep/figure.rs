@@ -24,7 +24,7 @@ pub const CLASSIC_LAWS: [(&str, f64, f64); 3] = [
     ("Wilson 11.8 (theta - 0.04)^1.5", 11.8, 0.04),
 ];
 
-use super::series::Series;
+use super::series::{Mark, Series};
 
 /// A tick label: a few digits without trailing zeros, powers of ten far from 1.
 fn tidy(v: f64) -> String {
@@ -69,7 +69,7 @@ pub fn draw(
     png: &Path,
 ) -> anyhow::Result<()> {
     register_font()?;
-    let all: Vec<(usize, (f64, f64, Option<f64>))> = series
+    let all: Vec<(usize, Mark)> = series
         .iter()
         .enumerate()
         .flat_map(|(k, s)| s.marks.iter().map(move |m| (k, *m)))
@@ -139,7 +139,7 @@ pub fn draw(
                 .label(label)
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
         }
-        let mine: Vec<(f64, f64, Option<f64>)> = all.iter().filter(|(j, _)| *j == k).map(|(_, m)| *m).collect();
+        let mine: Vec<Mark> = all.iter().filter(|(j, _)| *j == k).map(|(_, m)| *m).collect();
         for &(x, y, e) in &mine {
             if let Some(e) = e.filter(|e| *e > 0.0) {
                 let lo = (y - e).max(y0);

@@ -57,7 +57,7 @@ impl Eulerian<'_> {
             }
         }
         let mass = self.s.sediment_height(dz);
-        if !(mass > 0.0) || self.s.mass0 <= 0.0 {
+        if mass.is_nan() || mass <= 0.0 || self.s.mass0 <= 0.0 {
             return Err("the profiles hold no sediment, or the scene none".into());
         }
         let scale = self.s.mass0 / mass;
