@@ -43,6 +43,7 @@ pub mod eval;
 pub mod listing;
 pub mod plot;
 pub mod runner;
+pub mod sweep;
 pub mod table;
 
 /// Make sure the closure registrations are linked into this binary, and that they are

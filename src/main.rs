@@ -84,6 +84,39 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Run a study: a base scene over named axes of scene keys (their product or zip), the
+    /// points in parallel, one folder each; a manifest (sweep.json), a table of the axes'
+    /// values and every summary field (sweep.csv), and qs* against the swept number with
+    /// the 3/2-law fit (sweep.png). See docs/studies.md.
+    #[command(after_help = EXIT_CODES)]
+    Sweep {
+        /// sweep file: `base` scene, `[[axis]]` tables with `key` and `values` (or
+        /// `linspace`/`logspace`), optional `combine`, `set`, `unset`, `[[point]]`
+        file: PathBuf,
+        /// override one key of every point, before the sweep's own (repeatable)
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// output folder (default: out/<meta.name>); each point writes into DIR/point_NNNN
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// continue the sweep in the output folder: finished points are kept, interrupted
+        /// DEM points continue from their checkpoints, the others run
+        #[arg(long)]
+        resume: bool,
+        /// points run at once (default: the file's `jobs`, else the cores)
+        #[arg(long, value_name = "N")]
+        jobs: Option<usize>,
+        /// run nothing: write one resolved scene per point (DIR/point_NNNN.toml) and the
+        /// manifest, for a scheduler's job array (`saltus run DIR/point_NNNN.toml`)
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["collect", "resume", "out"])]
+        emit: Option<PathBuf>,
+        /// run nothing: gather the points run from `--emit DIR` into the table and figure
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["resume", "out"])]
+        collect: Option<PathBuf>,
+        /// print nothing but errors and the table's path
+        #[arg(long, short)]
+        quiet: bool,
+    },
     /// Hold granular closures against the averaged fields of a run: mu and phi against I or
     /// K, g0 from the pressure, the dissipation, viscosity, heat flux and drag dissipation
     /// of kinetic theory; predicted and measured side by side (CSV, PNG) with their RMS
@@ -241,6 +274,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 restart,
                 log_every: (!quiet).then(|| std::time::Duration::from_secs_f64(log_interval)),
                 max_wall,
+                warm_start: None,
             };
             let outcome = saltus::runner::run_scene(&s, &out, &bar, &settings);
             if !quiet {
@@ -300,6 +334,62 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     "{}: {failed} of {} variants failed (see the error column)",
                     file.display(),
                     report.runs.len()
+                );
+            }
+        }
+        Command::Sweep { file, set, out, resume, jobs, emit, collect, quiet } => {
+            if jobs == Some(0) {
+                anyhow::bail!("--jobs 0: give the number of points run at once, at least 1");
+            }
+            let sweep = saltus::sweep::load(&file, &set)?;
+            if let Some(dir) = emit {
+                let files = saltus::sweep::emit(&sweep, &dir)?;
+                outln!("{}: {} points written to {}", file.display(), files.len(), dir.display());
+                outln!("run each:  saltus run {}/point_NNNN.toml", dir.display());
+                outln!("then:      saltus sweep {} --collect {}", file.display(), dir.display());
+                return Ok(());
+            }
+            let report = match collect {
+                Some(dir) => saltus::sweep::collect(&sweep, &dir)?,
+                None => {
+                    let out = out.unwrap_or_else(|| saltus::sweep::default_out(&sweep));
+                    if let Err(e) = saltus::runner::catch_interrupt() {
+                        saltus::errln!("warning: {e:#}; an interrupt ends the sweep without writing its outputs");
+                    }
+                    let opts =
+                        saltus::sweep::Options { resume, jobs, progress: std::io::stderr().is_terminal(), quiet };
+                    saltus::sweep::run::run(&sweep, &out, &opts)?
+                }
+            };
+            if !quiet {
+                for w in &report.warnings {
+                    saltus::errln!("warning: {w}");
+                }
+                out!("{}", report.text());
+            }
+            for f in &report.files {
+                outln!("{}", f.display());
+            }
+            if saltus::runner::interrupted() {
+                return Err(saltus::runner::Stopped {
+                    code: saltus::runner::EXIT_INTERRUPTED,
+                    message: format!(
+                        "{}: interrupted; the finished points and the state of the running ones are in {}; continue with `saltus sweep {} --resume{}`",
+                        file.display(),
+                        report.out.display(),
+                        file.display(),
+                        if report.out == saltus::sweep::default_out(&sweep) { String::new() } else { format!(" --out {}", report.out.display()) }
+                    ),
+                }
+                .into());
+            }
+            let failed = report.failures();
+            if failed > 0 {
+                anyhow::bail!(
+                    "{}: {failed} of {} points did not finish (see the status column of {})",
+                    file.display(),
+                    report.manifest.points.len(),
+                    report.out.join(saltus::sweep::table::TABLE).display()
                 );
             }
         }

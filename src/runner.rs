@@ -41,11 +41,13 @@ pub struct RunSettings {
     pub log_every: Option<Duration>,
     /// stop the run after this many wall-clock seconds (`--max-wall`)
     pub max_wall: Option<f64>,
+    /// start from these profiles (a sweep's warm start) instead of the initial state
+    pub warm_start: Option<saltus_solvers::Profiles>,
 }
 
 impl Default for RunSettings {
     fn default() -> Self {
-        Self { restart: None, log_every: Some(Duration::from_secs_f64(LOG_INTERVAL)), max_wall: None }
+        Self { restart: None, log_every: Some(Duration::from_secs_f64(LOG_INTERVAL)), max_wall: None, warm_start: None }
     }
 }
 
@@ -288,7 +290,11 @@ pub fn run_scene_with(
         }
         Control::Continue
     };
-    let options = saltus_solvers::RunOptions { restart: settings.restart.clone(), max_wall: settings.max_wall };
+    let options = saltus_solvers::RunOptions {
+        restart: settings.restart.clone(),
+        max_wall: settings.max_wall,
+        warm_start: settings.warm_start.clone(),
+    };
     let result = saltus_solvers::run_with(scene, out, &mut observer, &options);
     bar.finish_and_clear();
     let run = result?;

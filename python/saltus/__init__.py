@@ -25,15 +25,18 @@ import tempfile
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, Iterable, List, Mapping, Optional, Union
+from typing import Any, Dict, Iterable, List, Mapping, Optional, Tuple, Union
 
 import numpy as np
 
-from . import _native
+from . import _native, _study
 from ._native import RunError, SceneError
+from ._study import SweepResult, sweep
 
 __all__ = [
     "run",
+    "sweep",
+    "SweepResult",
     "check",
     "models",
     "Closure",
@@ -85,6 +88,10 @@ class Result:
             ``{"kind": "column"}``), ``field``, ``value``, ``reason``; else None.
         scene_toml: the resolved scene (``scene.toml``): running it reproduces the run.
         warnings: what did not fail the run, also issued as :class:`SaltusWarning`.
+        timeseries: column name -> array of ``timeseries.csv`` (``t`` first; an empty
+            cell is NaN).
+        snapshots: the profile snapshots (``output.snapshot_interval``): (time,
+            column name -> array) in time order.
     """
 
     ending: str
@@ -97,6 +104,20 @@ class Result:
     breakdown: Optional[Dict[str, Any]] = None
     scene_toml: str = ""
     warnings: List[str] = field(default_factory=list)
+    timeseries: Dict[str, np.ndarray] = field(default_factory=dict)
+    snapshots: List[Tuple[float, Dict[str, np.ndarray]]] = field(default_factory=list)
+
+    def to_xarray(self) -> "Any":
+        """The run as an xarray Dataset: the profiles on ``z``, the time series on ``t``
+        (``<column>_t``), the snapshots on ``(t_snapshot, z)`` (``<column>_snapshot``),
+        units in each variable's ``units`` attribute; the ending, the summary (each
+        number as ``summary_<field>``, the whole as ``summary_json``) and the resolved
+        scene (``scene_toml``) as attributes. Raises ImportError without xarray."""
+        return _study.result_dataset(self)
+
+    def to_netcdf(self, path: PathLike, **kwargs: Any) -> None:
+        """:meth:`to_xarray` written to a netCDF file (``xarray.Dataset.to_netcdf``)."""
+        self.to_xarray().to_netcdf(path, **kwargs)
 
     def to_dataframe(self) -> "Any":
         """The profiles as a pandas DataFrame, one row per cell, one column per profile.
@@ -185,12 +206,12 @@ def run(
     if out is False:
         with tempfile.TemporaryDirectory(prefix="saltus-") as tmp:
             raw = _native.run(scene_path, set, tmp, quiet, from_dir)
+            series, snaps = _study.read_outputs(Path(tmp))
             raw["out"] = None
             raw["figure"] = None
-    elif out is None:
-        raw = _native.run(scene_path, set, None, quiet, from_dir)
     else:
-        raw = _native.run(scene_path, set, _path(out, "out"), quiet, from_dir)
+        raw = _native.run(scene_path, set, None if out is None else _path(out, "out"), quiet, from_dir)
+        series, snaps = _study.read_outputs(Path(raw["out"]))
     interrupt = raw.pop("interrupt")
     result = Result(
         ending=raw["ending"],
@@ -203,6 +224,8 @@ def run(
         breakdown=raw["breakdown"],
         scene_toml=raw["scene_toml"] or "",
         warnings=list(raw["warnings"]),
+        timeseries=series,
+        snapshots=snaps,
     )
     for w in result.warnings:
         warnings.warn(w, SaltusWarning, stacklevel=2)

@@ -31,6 +31,7 @@ use saltus_core::Error;
 use saltus_solvers::Progress;
 
 mod closures;
+mod sweep;
 
 create_exception!(
     saltus,
@@ -279,6 +280,7 @@ fn run<'py>(
             restart: restart.clone(),
             log_every: (!quiet).then(|| std::time::Duration::from_secs_f64(runner::LOG_INTERVAL)),
             max_wall: None,
+            warm_start: None,
         };
         runner::run_scene_with(&s, &out, &bar, &settings, &mut stop)
     });
@@ -451,6 +453,8 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(models, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_prepare, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_collect, m)?)?;
     m.add_class::<Closure>()?;
     m.add_function(wrap_pyfunction!(closures::register_closure, m)?)?;
     m.add_function(wrap_pyfunction!(closures::unregister_closure, m)?)?;

@@ -82,6 +82,9 @@ pub struct RunOptions {
     /// stop after this many wall-clock seconds ([`Ending::WallClock`]; the outputs and a
     /// checkpoint are written as at any other end)
     pub max_wall: Option<f64>,
+    /// start from these profiles (another run's final state, [`Stepper::warm_start`])
+    /// instead of the scene's initial state; not with `restart`
+    pub warm_start: Option<Profiles>,
 }
 
 /// Run `scene`, writing its outputs into `out`. `observer` sees every unit of work and
@@ -131,6 +134,15 @@ pub fn run_with(
             )));
         }
         stepper.restore(&r.state).map_err(fail)?;
+    }
+    if let Some(p) = &options.warm_start {
+        if restart.is_some() {
+            return Err(Error::Invalid(format!(
+                "{}: a run restarts from a checkpoint or starts warm, not both",
+                scene.path.display()
+            )));
+        }
+        stepper.warm_start(p).map_err(|m| Error::Invalid(format!("{}: warm start: {m}", scene.path.display())))?;
     }
     let mut recorder = run::Recorder::start(out, scene, stepper.as_ref(), restart.as_ref())?;
     let resumed = recorder.resumed_clock();

@@ -14,6 +14,7 @@ mod closures;
 mod domain;
 mod lagrangian;
 mod overrides;
+pub mod shields;
 mod solver;
 mod tables;
 
@@ -27,7 +28,7 @@ use crate::needs::{Field, Needs};
 use crate::param::ParamRange;
 
 pub use closures::{closure_from_value, de_concrete, granular_from_value, Closures, DEFAULT_MODELS};
-pub use domain::{Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT, MAX_STRETCH_DECADES};
+pub use domain::{CellSize, Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT, MAX_STRETCH_DECADES};
 pub use lagrangian::{
     Case, DragVelocity, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, FREY_LEVELS, MAX_PARTICLES, MAX_SIDE_DIAMETERS,
 };
@@ -37,8 +38,8 @@ pub use solver::{
     SolverKind, Surface, ELASTIC_PHI_RLP, MAX_TIME,
 };
 pub use tables::{
-    Contact, ContactModel, Fluid, Meta, NormalForce, Output, Particles, Physics, Reference, MAX_SNAPSHOTS,
-    MAX_TIMESERIES_ROWS, TIMESERIES_ROWS,
+    Contact, ContactModel, Drive, Fluid, Meta, NormalForce, Output, Particles, Physics, Reference, ShieldsWeight,
+    MAX_SNAPSHOTS, MAX_TIMESERIES_ROWS, TIMESERIES_ROWS,
 };
 
 /// Packing the DEM counts the particles of a bed with when `domain.bed_phi` is absent.
@@ -190,9 +191,11 @@ impl Scene {
     pub fn from_table(mut table: toml::Table, file: &Path) -> Result<Scene> {
         require_tables(&table, file)?;
         let closures_value = table.remove("closures");
-        let base: Base = de_path(toml::Value::Table(table), file, "")?;
+        let given = shields::Given::of(&table);
+        let mut base: Base = de_path(toml::Value::Table(table), file, "")?;
         base.fluid.check(file)?;
         base.particles.check(file)?;
+        shields::resolve(&mut base.physics, &mut base.domain, &base.fluid, &base.particles, given, file)?;
         base.physics.check(file)?;
         base.domain.check(file)?;
         base.solver.eulerian.check(file)?;
@@ -235,6 +238,9 @@ impl Scene {
     /// cells and settle time, the stiffness, absolute reference paths.
     fn resolve(&mut self) -> Result<()> {
         let d = self.particles.diameter;
+        if let Some(size) = self.domain.cell_size {
+            self.resolve_cell_size(size.metres(d))?;
+        }
         if self.domain.cells.is_none() {
             let n = self.domain.default_cells(d);
             // a default over the cap is left out, refused below only if the Eulerian runs
@@ -268,6 +274,38 @@ impl Scene {
         let dir = self.path.parent().map(Path::to_path_buf).unwrap_or_default();
         for r in &mut self.reference {
             r.file = absolute(&dir, &r.file);
+        }
+        Ok(())
+    }
+
+    /// `cells` (and the DEM's fluid cells when not given) of a uniform grid of cells of
+    /// `size` m; a `cells` given with it must be that number.
+    fn resolve_cell_size(&mut self, size: f64) -> Result<()> {
+        let f = self.path.as_path();
+        let n = self.domain.cells_of(size, 4);
+        if n > MAX_CELLS {
+            return Err(Error::Key {
+                file: f.into(),
+                key: "domain.cell_size".into(),
+                message: format!(
+                    "{} m over a column of {} m makes more than {MAX_CELLS} cells; give a larger size",
+                    crate::param::number(size),
+                    crate::param::number(self.domain.height())
+                ),
+            });
+        }
+        match self.domain.cells {
+            Some(c) if c != n => {
+                return Err(Error::Key {
+                    file: f.into(),
+                    key: "domain.cells".into(),
+                    message: format!("= {c}, but domain.cell_size makes {n} cells over the column; remove one of them"),
+                })
+            }
+            _ => self.domain.cells = Some(n),
+        }
+        if self.solver.kind == SolverKind::Lagrangian && self.solver.lagrangian.cells.is_none() {
+            self.solver.lagrangian.cells = Some(self.domain.cells_of(size, 2));
         }
         Ok(())
     }

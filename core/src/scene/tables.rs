@@ -226,6 +226,52 @@ pub struct Physics {
     /// imposed streamwise pressure gradient -dp/dx (Pa/m)
     #[serde(default)]
     pub pressure_gradient: f64,
+    /// Shields number the scene is driven at; the loader sets the quantity `drive` names
+    /// from it ([`super::shields`])
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shields: Option<f64>,
+    /// what `shields` sets: the water depth, the slope or the pressure gradient
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub drive: Option<Drive>,
+    /// the weight `shields` is measured against: the bed-normal one (the default) or the
+    /// vertical one
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shields_weight: Option<ShieldsWeight>,
+}
+
+/// The quantity a scene's Shields number (`physics.shields`) sets.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Drive {
+    /// `domain.water_depth`, under the scene's slope or pressure gradient
+    WaterDepth,
+    /// `physics.slope` (sin alpha), over the scene's water depth
+    Slope,
+    /// `physics.pressure_gradient`, over the scene's water depth
+    PressureGradient,
+}
+
+impl Drive {
+    /// The scene key it sets.
+    pub fn key(self) -> &'static str {
+        match self {
+            Drive::WaterDepth => "domain.water_depth",
+            Drive::Slope => "physics.slope",
+            Drive::PressureGradient => "physics.pressure_gradient",
+        }
+    }
+}
+
+/// The submerged weight a Shields number divides the bed shear stress by.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum ShieldsWeight {
+    /// (rho_p - rho_f) g cos(alpha) d, the bed-normal weight (Maurin et al. 2015, and the
+    /// summary's `shields_nominal`)
+    #[default]
+    BedNormal,
+    /// (rho_p - rho_f) g d, the vertical weight (Chassagne et al. 2023, section 3.1)
+    Vertical,
 }
 
 fn default_g() -> f64 {
@@ -234,7 +280,7 @@ fn default_g() -> f64 {
 
 impl Default for Physics {
     fn default() -> Self {
-        Self { gravity: crate::G, slope: 0.0, pressure_gradient: 0.0 }
+        Self { gravity: crate::G, slope: 0.0, pressure_gradient: 0.0, shields: None, drive: None, shields_weight: None }
     }
 }
 

@@ -101,6 +101,7 @@ mod stepper;
 mod stress;
 mod temperature;
 mod volume_fraction;
+mod warm;
 
 pub use block::BlockTridiagonal;
 pub use config::{Config, Domain, Settings, Top};

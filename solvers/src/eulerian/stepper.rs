@@ -63,6 +63,10 @@ impl Stepper for Eulerian<'_> {
         Limits { end_time: s.end_time, end_tolerance: 1e-12, max_steps: s.max_steps as u64, wall: None }
     }
 
+    fn warm_start(&mut self, profiles: &crate::output::Profiles) -> Result<(), String> {
+        self.warm_start_from(profiles)
+    }
+
     fn step(&mut self, limits: &Limits) -> Option<Ending> {
         if let Some(e) = self.ending() {
             return Some(e);

@@ -318,6 +318,13 @@ pub trait Stepper {
     fn restartable(&self) -> bool {
         false
     }
+
+    /// Start from `profiles` (another run's final profiles, a neighbouring point of a
+    /// sweep) instead of the scene's initial state, before the first step; `Err` for a
+    /// solver that cannot.
+    fn warm_start(&mut self, _profiles: &Profiles) -> Result<(), String> {
+        Err(format!("the {} solver cannot start from another run's profiles", self.name()))
+    }
 }
 
 /// Something that watches a run: told when it starts, after every unit of work (where it
