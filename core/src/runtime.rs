@@ -14,6 +14,7 @@
 //! model. Two-equation turbulence is not one of them ([`Shape`]).
 
 use std::fmt;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, PoisonError, RwLock};
 
 use crate::closure::Family;
@@ -469,4 +470,18 @@ pub fn models(family: Option<Family>) -> Vec<Arc<RuntimeModel>> {
     let mut v: Vec<_> = read().iter().filter(|m| family.is_none_or(|f| f == m.family)).cloned().collect();
     v.sort_by(|a, b| (a.family, a.name).cmp(&(b.family, b.name)));
     v
+}
+
+static PYTHON_HOST: AtomicBool = AtomicBool::new(false);
+
+/// Declare that this process runs a Python interpreter that imports a scene's `[python]
+/// modules` before loading it (the Python package does, when it is imported); without it
+/// a scene with `[python]` is refused ([`crate::scene::Python::refused`]).
+pub fn set_python_host() {
+    PYTHON_HOST.store(true, Ordering::Relaxed);
+}
+
+/// Whether [`set_python_host`] was called.
+pub fn python_host() -> bool {
+    PYTHON_HOST.load(Ordering::Relaxed)
 }

@@ -14,6 +14,7 @@ mod closures;
 mod domain;
 mod lagrangian;
 mod overrides;
+mod python;
 mod solver;
 mod tables;
 
@@ -32,6 +33,7 @@ pub use lagrangian::{
     Case, DragVelocity, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, FREY_LEVELS, MAX_PARTICLES, MAX_SIDE_DIAMETERS,
 };
 pub use overrides::{apply_override, parse_table};
+pub use python::Python;
 pub use solver::{
     default_elastic_phi_rlp, Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver,
     SolverKind, Surface, ELASTIC_PHI_RLP, MAX_TIME,
@@ -71,6 +73,9 @@ pub struct Scene {
     /// reference data, in the order of the scene file, paths absolute
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub reference: Vec<Reference>,
+    /// the Python files or modules registering the scene's closures, files absolute
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub python: Option<Python>,
     /// file the scene was read from (for messages and relative paths)
     #[serde(skip)]
     pub path: PathBuf,
@@ -174,6 +179,22 @@ impl Scene {
         Self::from_file_with(path, &[])
     }
 
+    /// The `[python] modules` of a scene file with its overrides, resolved as a load
+    /// resolves them (files absolute), read before anything else of the scene: what the
+    /// Python package imports before it loads the scene.
+    pub fn python_modules(path: impl AsRef<Path>, overrides: &[String]) -> Result<Vec<String>> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| Error::Io { file: path.into(), source })?;
+        let mut table = parse_table(&text, path)?;
+        for o in overrides {
+            apply_override(&mut table, o)?;
+        }
+        match table.remove("python") {
+            Some(v) => Ok(Python::from_value(v, path)?.modules),
+            None => Ok(Vec::new()),
+        }
+    }
+
     /// Read a scene file and apply `--set KEY=VALUE` overrides before resolving it.
     pub fn from_file_with(path: impl AsRef<Path>, overrides: &[String]) -> Result<Scene> {
         let path = path.as_ref();
@@ -189,6 +210,11 @@ impl Scene {
     /// to resolve reference paths).
     pub fn from_table(mut table: toml::Table, file: &Path) -> Result<Scene> {
         require_tables(&table, file)?;
+        let python = table.remove("python").map(|v| Python::from_value(v, file)).transpose()?;
+        // before the closures: their names are registered by the modules
+        if let Some(p) = python.as_ref().filter(|_| !crate::runtime::python_host()) {
+            return Err(p.refused(file));
+        }
         let closures_value = table.remove("closures");
         let base: Base = de_path(toml::Value::Table(table), file, "")?;
         base.fluid.check(file)?;
@@ -209,6 +235,7 @@ impl Scene {
             closures,
             output: base.output,
             reference: base.reference,
+            python,
             path: file.to_path_buf(),
         };
         scene.resolve()?;
