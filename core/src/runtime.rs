@@ -172,9 +172,11 @@ pub fn face_io(face: Face) -> (&'static [&'static str], &'static [&'static str],
         Face::Kinetic => (&["phi", "sqrt_t", "k_drag"], &["g0", "f1", "f2", "f3", "f4", "e_eff"], GRAIN),
         Face::MixingLength => (&["z", "dz", "phi", "dudz"], &["l_m"], &["diameter", "nu_f"]),
         Face::Diffusivity => (&["k", "omega", "nu_t", "reynolds_stress"], &["diffusivity"], SCALES),
-        Face::Draw => {
-            (&["k", "omega", "nu_t", "reynolds_stress", "slip", "response_time"], &["u_x", "u_y", "u_z", "duration"], SCALES)
-        }
+        Face::Draw => (
+            &["k", "omega", "nu_t", "reynolds_stress", "slip", "response_time"],
+            &["u_x", "u_y", "u_z", "duration"],
+            SCALES,
+        ),
     }
 }
 
@@ -202,10 +204,12 @@ pub fn optional_outputs(family: Family) -> &'static [&'static str] {
 /// Whether output `output` = `value` of a run-time closure of `family` at row `row` of
 /// `inputs` is usable: finite, or C_D = +inf at Re_p = 0 (a drag law with a Stokes limit,
 /// whose `cd_re` the solvers then use), or a draw's `duration` = +inf (no fluctuation
-/// until the flow has a turnover time).
+/// until the flow has a turnover time), or a packing inverse's control number = +inf
+/// (phi <= 0).
 pub fn accepts(family: Family, output: &str, value: f64, inputs: &[&[f64]], row: usize) -> bool {
     value.is_finite()
         || (family == Family::Fluctuation && output == "duration" && value == f64::INFINITY)
+        || (family == Family::Granular && Control::from_name(output).is_some() && value == f64::INFINITY)
         || (family == Family::Drag
             && output == "cd"
             && value == f64::INFINITY
@@ -216,7 +220,9 @@ pub fn accepts(family: Family, output: &str, value: f64, inputs: &[&[f64]], row:
 pub fn refused(family: Family) -> String {
     let allowed = match family {
         Family::Drag | Family::Hindrance | Family::Viscosity | Family::WallFriction => "one function",
-        Family::Granular => "a local rheology (friction and packing of a control number) or a kinetic-theory coefficient set",
+        Family::Granular => {
+            "a local rheology (friction and packing of a control number) or a kinetic-theory coefficient set"
+        }
         Family::Turbulence => {
             "a mixing length (two-equation closures are compiled models: their source terms, wall values and \
              initial states are not one function of the column)"
@@ -415,9 +421,7 @@ pub fn register(model: RuntimeModel) -> Result<(), String> {
     if matches!(model.shape, Shape::Local { control: Control::Combined, .. }) && !has("alpha") {
         return Err("a rheology of K = J + alpha I^2 needs a parameter `alpha`".into());
     }
-    if let Some(missing) =
-        KINETIC_PARAMS.iter().find(|p| matches!(model.shape, Shape::Kinetic { .. }) && !has(p))
-    {
+    if let Some(missing) = KINETIC_PARAMS.iter().find(|p| matches!(model.shape, Shape::Kinetic { .. }) && !has(p)) {
         return Err(format!("a kinetic-theory coefficient set needs a parameter `{missing}`"));
     }
     let plain = name.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')

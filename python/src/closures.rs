@@ -309,18 +309,35 @@ pub fn register_faces(
             let faces = [Face::Rheology(control), Face::Inverse(control)];
             params_v = declared_params(params, fam, &faces)?;
             let f = face_function(&evaluate, "friction_packing", fam, faces[0], &params_v, &[])?;
-            let inverse = function("inverse")
-                .map(|g| face_function(&g, "inverse", fam, faces[1], &params_v, &[]))
-                .transpose()?;
+            let inverse =
+                function("inverse").map(|g| face_function(&g, "inverse", fam, faces[1], &params_v, &[])).transpose()?;
             (f, Shape::Local { control, inverse })
         }
         "kinetic" => {
             params_v = declared_params(params, fam, &[Face::Kinetic])?;
             // the elastic law's parameters, with the proposed model's defaults when not declared
             let defaults = [
-                ("p0", 0.05, ParamRange::positive(), "Pa", "elastic modulus P0 of the Johnson-Jackson pressure (eq 2.14)"),
-                ("phi_rlp", 0.57, ParamRange::open(0.0, 1.0), "-", "random loose packing where the elastic pressure starts"),
-                ("phi_max", 0.635, ParamRange::open(0.0, 1.0), "-", "maximum packing where the elastic pressure diverges"),
+                (
+                    "p0",
+                    0.05,
+                    ParamRange::positive(),
+                    "Pa",
+                    "elastic modulus P0 of the Johnson-Jackson pressure (eq 2.14)",
+                ),
+                (
+                    "phi_rlp",
+                    0.57,
+                    ParamRange::open(0.0, 1.0),
+                    "-",
+                    "random loose packing where the elastic pressure starts",
+                ),
+                (
+                    "phi_max",
+                    0.635,
+                    ParamRange::open(0.0, 1.0),
+                    "-",
+                    "maximum packing where the elastic pressure diverges",
+                ),
                 (
                     "static_friction",
                     0.146 + 0.228 * (0.4f64 / 0.232).tanh(),
@@ -367,8 +384,13 @@ pub fn register_faces(
                         ))
                     })?;
                     let (inputs, _, keywords) = runtime::face_io(Face::Draw);
-                    if inputs.contains(&k.as_str()) || keywords.contains(&k.as_str()) || params_v.iter().any(|p| p.name == k) {
-                        return Err(PyValueError::new_err(format!("variates: `{k}` is already an input, keyword or parameter")));
+                    if inputs.contains(&k.as_str())
+                        || keywords.contains(&k.as_str())
+                        || params_v.iter().any(|p| p.name == k)
+                    {
+                        return Err(PyValueError::new_err(format!(
+                            "variates: `{k}` is already an input, keyword or parameter"
+                        )));
                     }
                     variates.push(v);
                     names.push(leak(k));
@@ -434,7 +456,8 @@ pub fn register_closure(
     let (inputs, outputs) = runtime::io(fam).ok_or_else(|| {
         PyValueError::new_err(format!(
             "family `{fam}` takes its closures through saltus.register_rheology, register_kinetic_theory, \
-             register_mixing_length or register_fluctuation; allowed here: drag, hindrance, viscosity, wall_friction"
+             register_mixing_length or register_fluctuation; register_closure takes the others, allowed: drag, hindrance, \
+             viscosity, wall_friction"
         ))
     })?;
     if !evaluate.is_callable() {
@@ -532,7 +555,11 @@ pub fn closure_check<'py>(
 /// package to import before it loads the scene.
 #[pyfunction]
 #[pyo3(signature = (scene, set=None))]
-pub fn scene_modules(py: Python<'_>, scene: std::path::PathBuf, set: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<String>> {
+pub fn scene_modules(
+    py: Python<'_>,
+    scene: std::path::PathBuf,
+    set: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Vec<String>> {
     let set = crate::overrides(set)?;
     saltus_core::scene::Scene::python_modules(&scene, &set).map_err(|e| crate::load_error(py, e))
 }

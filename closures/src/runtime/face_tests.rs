@@ -9,8 +9,8 @@ use saltus_core::rng::stream;
 use saltus_core::runtime::{self, BatchFunction, Control, RuntimeModel, Variate, KINETIC_PARAMS};
 use saltus_core::scene::{closure_from_value, granular_from_value, Particles};
 use saltus_core::{
-    ColumnView, FlowScales, Fluctuation, GranularStress, KineticCoefficients, KineticTheory, LocalRheology, LocalState, Needs, Param,
-    ParticleSlip, SaltationInput, Turbulence, TurbulencePoint,
+    ColumnView, FlowScales, Fluctuation, GranularStress, KineticCoefficients, KineticTheory, LocalRheology, LocalState,
+    Needs, Param, ParticleSlip, SaltationInput, Turbulence, TurbulencePoint,
 };
 
 use super::*;
@@ -28,7 +28,9 @@ impl BatchFunction for Function {
     }
 }
 
-fn function(law: impl Fn(&[f64], &[&[f64]], &mut [&mut [f64]]) -> Result<usize, String> + Send + Sync + 'static) -> Arc<dyn BatchFunction> {
+fn function(
+    law: impl Fn(&[f64], &[&[f64]], &mut [&mut [f64]]) -> Result<usize, String> + Send + Sync + 'static,
+) -> Arc<dyn BatchFunction> {
     Arc::new(Function(Box::new(law)))
 }
 
@@ -188,8 +190,7 @@ fn a_kinetic_coefficient_set_is_the_built_in_frictional_collisional() {
     });
     let fc = FrictionalCollisional::default();
     let values = [fc.p0, fc.phi_rlp, fc.phi_max, fc.static_friction()];
-    let params =
-        KINETIC_PARAMS.iter().zip(values).map(|(n, v)| Param::new(*n, v, ParamRange::any(), "-", n)).collect();
+    let params = KINETIC_PARAMS.iter().zip(values).map(|(n, v)| Param::new(*n, v, ParamRange::any(), "-", n)).collect();
     register(
         Family::Granular,
         "rt_kinetic",
@@ -203,7 +204,12 @@ fn a_kinetic_coefficient_set_is_the_built_in_frictional_collisional() {
     let phi: Vec<f64> = (0..64).map(|i| i as f64 * 0.01).collect();
     let salt: Vec<SaltationInput> = phi
         .iter()
-        .map(|&p| SaltationInput { sqrt_t: 0.05 + p, k_drag: 1e3 * (1.0 + p), particle_density: 2500.0, diameter: 6e-3 })
+        .map(|&p| SaltationInput {
+            sqrt_t: 0.05 + p,
+            k_drag: 1e3 * (1.0 + p),
+            particle_density: 2500.0,
+            diameter: 6e-3,
+        })
         .collect();
     for salt in [None, Some(&salt[..])] {
         let (mut a, mut b) = (vec![KineticCoefficients::default(); 64], vec![KineticCoefficients::default(); 64]);
@@ -246,14 +252,10 @@ fn a_kinetic_coefficient_set_without_its_elastic_parameters_or_with_them_crossed
         .map(|(n, v)| Param::new(*n, v, ParamRange::any(), "-", n))
         .collect();
     runtime::register(m(crossed)).unwrap();
-    let e = granular_from_value(
-        table("type = \"rt_kinetic_bad\""),
-        &particles(),
-        Path::new("s.toml"),
-        "closures.granular",
-    )
-    .unwrap_err()
-    .to_string();
+    let e =
+        granular_from_value(table("type = \"rt_kinetic_bad\""), &particles(), Path::new("s.toml"), "closures.granular")
+            .unwrap_err()
+            .to_string();
     assert!(e.contains("s.toml") && e.contains("closures.granular") && e.contains("phi_rlp"), "{e}");
 }
 
@@ -335,16 +337,14 @@ fn a_particle_draw_with_the_eim_variates_is_the_built_in_eim() {
     });
     let variates = vec![Variate::Normal, Variate::Normal, Variate::Normal, Variate::Exponential];
     let needs = Needs::of(&[saltus_core::Field::Tke, saltus_core::Field::Omega]);
-    register(
+    register(Family::Fluctuation, "rt_eim", Vec::new(), draw, Shape::Fluctuation { diffusivity, variates, needs });
+    let f: Box<dyn Fluctuation> = closure_from_value(
+        table("type = \"rt_eim\""),
         Family::Fluctuation,
-        "rt_eim",
-        Vec::new(),
-        draw,
-        Shape::Fluctuation { diffusivity, variates, needs },
-    );
-    let f: Box<dyn Fluctuation> =
-        closure_from_value(table("type = \"rt_eim\""), Family::Fluctuation, Path::new("s.toml"), "closures.fluctuation")
-            .unwrap();
+        Path::new("s.toml"),
+        "closures.fluctuation",
+    )
+    .unwrap();
     assert_eq!(f.needs(), needs);
     let s = FlowScales { depth: 0.1, bulk_velocity: 1.0 };
     let points: Vec<TurbulencePoint> = (0..40)

@@ -18,7 +18,6 @@ use saltus_core::{FlowScales, Fluctuation, FluctuationDraw, Needs, ParticleSlip,
 
 use super::{as_runtime_closure, RuntimeClosure};
 
-
 /// A fluctuation model whose draw and diffusivity are registered functions.
 pub struct RuntimeFluctuation {
     c: RuntimeClosure,

@@ -123,7 +123,12 @@ impl KineticTheory for RuntimeKinetic {
         }
         let mut cols = vec![vec![0.0; n]; 6];
         let [g0, f1, f2, f3, f4, e_eff] = &mut cols[..] else { return };
-        self.c.call_face(&*self.c.model.function, &self.grain, &[phi, &sqrt_t, &k_drag], &mut [g0, f1, f2, f3, f4, e_eff]);
+        self.c.call_face(
+            &*self.c.model.function,
+            &self.grain,
+            &[phi, &sqrt_t, &k_drag],
+            &mut [g0, f1, f2, f3, f4, e_eff],
+        );
         for (i, o) in out.iter_mut().enumerate() {
             *o = KineticCoefficients { g0: g0[i], f1: f1[i], f2: f2[i], f3: f3[i], f4: f4[i], e_eff: e_eff[i] };
         }

@@ -23,6 +23,7 @@ use std::path::{Path, PathBuf};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
+use crate::closure::Family;
 use crate::error::{Error, Result};
 use crate::needs::{Field, Needs};
 use crate::param::ParamRange;
@@ -239,6 +240,13 @@ impl Scene {
             path: file.to_path_buf(),
         };
         scene.resolve()?;
+        // a closure registered at run time that failed while the scene resolved (a
+        // granular law's jammed packing): its message, not that of the NaN it gave
+        if let Some(message) = scene.closures.failure() {
+            let family = message.split_whitespace().next().and_then(Family::from_key);
+            let key = family.map_or_else(|| "closures".to_string(), |f| format!("closures.{f}"));
+            return Err(Error::Key { file: file.into(), key, message });
+        }
         scene.check_needs()?;
         scene.check_active()?;
         Ok(scene)

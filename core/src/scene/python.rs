@@ -41,7 +41,9 @@ impl Python {
                     return Err(key(format!("python.modules[{i}]"), format!("no Python file {path}")));
                 }
                 *m = path;
-            } else if m.is_empty() || !m.split('.').all(|s| s.chars().all(|c| c.is_alphanumeric() || c == '_') && !s.is_empty()) {
+            } else if m.is_empty()
+                || !m.split('.').all(|s| s.chars().all(|c| c.is_alphanumeric() || c == '_') && !s.is_empty())
+            {
                 return Err(key(
                     format!("python.modules[{i}]"),
                     format!("`{m}` is neither a Python file (`.py`, relative to the scene) nor a module name"),
