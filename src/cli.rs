@@ -20,3 +20,10 @@ mod program;
 pub fn main() -> std::process::ExitCode {
     program::main()
 }
+
+/// [`main`] on `args` (the program name first) rather than the process arguments: the
+/// exit code. `python -m saltus` runs the program so, in the Python process where the
+/// scene's `[python] modules` registered their closures.
+pub fn main_from(args: Vec<std::ffi::OsString>) -> u8 {
+    program::main_from(args)
+}

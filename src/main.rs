@@ -221,20 +221,35 @@ macro_rules! outln {
 }
 
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
+    ExitCode::from(code(Cli::parse()))
+}
+
+/// The program on `args` (the program name first) instead of the process arguments, for
+/// a host that runs it in-process (`python -m saltus`): the exit code. A parse error or
+/// `--help` prints as the program does and gives clap's code.
+#[allow(dead_code)] // the binary does not call it; `saltus::cli` does
+pub fn main_from(args: Vec<std::ffi::OsString>) -> u8 {
+    match Cli::try_parse_from(args) {
+        Ok(cli) => code(cli),
+        Err(e) => {
+            let _ = e.print();
+            u8::try_from(e.exit_code()).unwrap_or(saltus::runner::EXIT_BAD_INPUT)
+        }
+    }
+}
+
+fn code(cli: Cli) -> u8 {
     match run(cli) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(()) => 0,
         Err(e) => {
             saltus::errln!("error: {}", saltus::describe(&e));
             // a run stopped early wrote its outputs and says how it stopped; anything
             // else is a failure before or around the work
             // a closure check that ran and found a failing check: 1, as a test runner would
             if e.downcast_ref::<saltus::check::ChecksFailed>().is_some() {
-                return ExitCode::from(1);
+                return 1;
             }
-            ExitCode::from(
-                e.downcast_ref::<saltus::runner::Stopped>().map_or(saltus::runner::EXIT_BAD_INPUT, |s| s.code),
-            )
+            e.downcast_ref::<saltus::runner::Stopped>().map_or(saltus::runner::EXIT_BAD_INPUT, |s| s.code)
         }
     }
 }

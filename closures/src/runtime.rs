@@ -1,7 +1,10 @@
-//! The models of closures registered at run time ([`saltus_core::runtime`]): one adapter
-//! that implements the drag, hindrance, viscosity and wall-friction traits by calling the registered
-//! function on whole slices, so that a solver's batch call (a column, a chunk of
-//! particles) is one call of the function.
+//! The models of closures registered at run time ([`saltus_core::runtime`]): adapters
+//! that implement the family traits by calling the registered functions on whole slices,
+//! so that a solver's batch call (a column, a chunk of particles) is one call of the
+//! function. [`RuntimeClosure`] holds the drag, hindrance, viscosity and wall-friction
+//! laws and is the caller the other adapters share: [`local`] (granular local rheology),
+//! [`kinetic`] (kinetic-theory coefficient set), [`mixing_length`] (algebraic turbulence),
+//! [`fluctuation`] (particle draws and mean-field diffusivity).
 //!
 //! The law itself is the user's; what the adapter adds, documented with the trait it
 //! fills:
@@ -23,10 +26,15 @@ use std::fmt;
 use std::sync::{Arc, OnceLock};
 
 use saltus_core::closure::Family;
-use saltus_core::runtime::{Built, RuntimeModel};
+use saltus_core::runtime::{BatchFunction, Built, RuntimeModel, Shape};
 use saltus_core::{Describe, DragLaw, DragReynolds, EffectiveViscosity, Hindrance, Limit, Param, WallFriction};
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
+
+pub mod fluctuation;
+pub mod kinetic;
+pub mod local;
+pub mod mixing_length;
 
 /// Smallest Re_p at which C_D Re_p of a run-time drag law is evaluated (the DEM's clamp
 /// of Re*).
@@ -55,8 +63,23 @@ impl fmt::Debug for RuntimeClosure {
 /// adapter at `values`, as the trait object of the model's family. A drag law is
 /// evaluated once here for its C_D^inf, which must be finite and >= 0.
 pub fn build(model: &Arc<RuntimeModel>, values: Vec<f64>) -> Result<Built, String> {
-    let mut c =
-        RuntimeClosure { model: Arc::clone(model), values, cd_inf: 0.0, gives_cd_re: false, failure: OnceLock::new() };
+    let c = RuntimeClosure::new(model, values);
+    Ok(match (model.family, &model.shape) {
+        (Family::Granular, Shape::Local { .. }) => Built::Granular(Box::new(local::RuntimeLocal::new(c))),
+        (Family::Granular, Shape::Kinetic { .. }) => Built::Granular(Box::new(kinetic::RuntimeKinetic::new(c)?)),
+        (Family::Turbulence, Shape::MixingLength) => {
+            Built::Turbulence(Box::new(mixing_length::RuntimeMixingLength::new(c)))
+        }
+        (Family::Fluctuation, Shape::Fluctuation { .. }) => {
+            Built::Fluctuation(Box::new(fluctuation::RuntimeFluctuation::new(c)))
+        }
+        (_, Shape::Plain) => plain(c, model)?,
+        (other, _) => return Err(saltus_core::runtime::refused(other)),
+    })
+}
+
+/// The law of a one-function family.
+fn plain(mut c: RuntimeClosure, model: &Arc<RuntimeModel>) -> Result<Built, String> {
     Ok(match model.family {
         Family::Drag => {
             // one call: C_D^inf, and whether the law gives C_D Re_p
@@ -83,11 +106,41 @@ pub fn build(model: &Arc<RuntimeModel>, values: Vec<f64>) -> Result<Built, Strin
 }
 
 impl RuntimeClosure {
+    fn new(model: &Arc<RuntimeModel>, values: Vec<f64>) -> Self {
+        RuntimeClosure { model: Arc::clone(model), values, cd_inf: 0.0, gives_cd_re: false, failure: OnceLock::new() }
+    }
+
+    /// The value of parameter `name` (NaN if the model has none: [`register`] of core
+    /// refuses the shapes that need a missing one).
+    ///
+    /// [`register`]: saltus_core::runtime::register
+    fn param(&self, name: &str) -> f64 {
+        self.model.params.iter().position(|p| p.name == name).map_or(f64::NAN, |i| self.values[i])
+    }
+
     /// The function on `inputs` into `outputs`; how many outputs it wrote. On failure
     /// NaN everywhere and the first message kept.
     fn call(&self, inputs: &[&[f64]], outputs: &mut [&mut [f64]]) -> usize {
+        self.call_face(&*self.model.function, &[], inputs, outputs)
+    }
+
+    /// Face `function` with the parameters followed by `context` (the face's scalar
+    /// keywords), as [`RuntimeClosure::call`].
+    fn call_face(
+        &self,
+        function: &dyn BatchFunction,
+        context: &[f64],
+        inputs: &[&[f64]],
+        outputs: &mut [&mut [f64]],
+    ) -> usize {
         if self.failure.get().is_none() {
-            match self.model.function.evaluate(&self.values, inputs, outputs) {
+            // one small vector per batch when the face has scalar keywords
+            let params = if context.is_empty() {
+                std::borrow::Cow::Borrowed(&self.values[..])
+            } else {
+                std::borrow::Cow::Owned([&self.values[..], context].concat())
+            };
+            match function.evaluate(&params, inputs, outputs) {
                 Ok(n) => return n,
                 Err(m) => {
                     let _ = self.failure.set(format!("{} closure `{}`: {m}", self.model.family, self.model.name));
@@ -139,6 +192,44 @@ impl Describe for RuntimeClosure {
         self.failure.get().cloned()
     }
 }
+
+/// [`Describe`], [`Serialize`] and [`fmt::Debug`] of an adapter that holds its
+/// [`RuntimeClosure`] as `c`: those of the closure.
+macro_rules! as_runtime_closure {
+    ($t:ty) => {
+        impl std::fmt::Debug for $t {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                self.c.fmt(f)
+            }
+        }
+        impl serde::Serialize for $t {
+            fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+                self.c.serialize(serializer)
+            }
+        }
+        impl saltus_core::Describe for $t {
+            fn name(&self) -> &'static str {
+                self.c.name()
+            }
+            fn source(&self) -> &'static str {
+                self.c.source()
+            }
+            fn equation(&self) -> &'static str {
+                self.c.equation()
+            }
+            fn params(&self) -> Vec<saltus_core::Param> {
+                self.c.params()
+            }
+            fn limits(&self) -> Vec<saltus_core::Limit> {
+                self.c.limits()
+            }
+            fn failure(&self) -> Option<String> {
+                self.c.failure()
+            }
+        }
+    };
+}
+use as_runtime_closure;
 
 // The family traits are implemented by hand, not with `#[typetag::serde]`: typetag's
 // registrations are compiled in, and this one type stands for every run-time name. The two
@@ -235,3 +326,6 @@ impl WallFriction for RuntimeClosure {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod face_tests;

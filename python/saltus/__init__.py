@@ -32,6 +32,8 @@ import numpy as np
 from . import _native, _study
 from ._native import RunError, SceneError
 from ._study import SweepResult, sweep
+from . import closures as _closures
+from .closures import register_fluctuation, register_kinetic_theory, register_mixing_length, register_rheology
 
 __all__ = [
     "run",
@@ -41,6 +43,10 @@ __all__ = [
     "models",
     "Closure",
     "register_closure",
+    "register_rheology",
+    "register_kinetic_theory",
+    "register_mixing_length",
+    "register_fluctuation",
     "unregister_closure",
     "closure_check",
     "CheckReport",
@@ -202,6 +208,7 @@ def run(
     The run itself holds no GIL: other Python threads go on meanwhile.
     """
     scene_path = _path(scene, "scene")
+    _closures.import_modules(_native.scene_modules(scene_path, set))  # the scene's [python] modules
     from_dir = None if restart is None else _path(restart, "restart")
     if out is False:
         with tempfile.TemporaryDirectory(prefix="saltus-") as tmp:
@@ -252,6 +259,7 @@ def check(scene: PathLike, set: Overrides = None, *, toml: bool = False) -> Unio
     Raises:
         SceneError: with the command line's message, and ``file`` and ``key`` attributes.
     """
+    _closures.import_modules(_native.scene_modules(_path(scene, "scene"), set))  # [python] modules
     resolved, text = _native.check(_path(scene, "scene"), set)
     return text if toml else resolved
 

@@ -16,17 +16,18 @@ use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 use saltus::check::{self, Options};
 use saltus_core::closure::Family;
 use saltus_core::param::{number, Bound as End, ParamRange};
-use saltus_core::runtime::{self, BatchFunction, RuntimeLimit, RuntimeModel};
-use saltus_core::{DragReynolds, Limit, Param};
+use saltus_core::runtime::{self, BatchFunction, Control, Face, RuntimeLimit, RuntimeModel, Shape, Variate};
+use saltus_core::{DragReynolds, Field, Limit, Needs, Param};
 
 use crate::{json_to_py, py_to_toml, SceneError};
 
-/// A Python function as the law of a run-time closure.
+/// A Python function as the law (one face) of a run-time closure.
 struct PyFunction {
     function: Py<PyAny>,
     family: Family,
+    /// the parameters' names, then the face's scalar keywords
     params: Vec<String>,
-    inputs: &'static [&'static str],
+    inputs: Vec<&'static str>,
     outputs: &'static [&'static str],
     optional: &'static [&'static str],
 }
@@ -213,6 +214,229 @@ fn limit(v: &Bound<'_, PyAny>, params: &[Param]) -> PyResult<RuntimeLimit> {
     }
 }
 
+/// The parameters of `params=`, none of them an input or a keyword of `faces`.
+fn declared_params(params: Option<&Bound<'_, PyDict>>, fam: Family, faces: &[Face]) -> PyResult<Vec<Param>> {
+    let params: Vec<Param> = match params {
+        Some(d) => d.iter().map(|(k, v)| param(&k.extract::<String>()?, &v)).collect::<PyResult<_>>()?,
+        None => Vec::new(),
+    };
+    for face in faces {
+        let (inputs, _, keywords) = runtime::face_io(*face);
+        if let Some(p) = params.iter().find(|p| inputs.contains(&p.name.as_str())) {
+            return Err(PyValueError::new_err(format!("params: `{}` is an input of the {fam} family", p.name)));
+        }
+        if let Some(p) = params.iter().find(|p| keywords.contains(&p.name.as_str())) {
+            return Err(PyValueError::new_err(format!(
+                "params: `{}` is a keyword the solver gives the {fam} function ({})",
+                p.name,
+                keywords.join(", ")
+            )));
+        }
+    }
+    Ok(params)
+}
+
+/// `limits=` as run-time limits.
+fn declared_limits(limits: Option<&Bound<'_, PyAny>>, params: &[Param]) -> PyResult<Vec<RuntimeLimit>> {
+    match limits.filter(|l| !l.is_none()) {
+        Some(l) if l.is_instance_of::<PyList>() || l.is_instance_of::<PyTuple>() => {
+            l.try_iter()?.map(|x| limit(&x?, params)).collect::<PyResult<_>>()
+        }
+        Some(l) => Err(PyTypeError::new_err(format!("limits: expected a list, found {l}"))),
+        None => Ok(Vec::new()),
+    }
+}
+
+/// Face `face` of `fam` as the Python function `f`, with `extra` inputs after the face's own.
+fn face_function(
+    f: &Bound<'_, PyAny>,
+    what: &str,
+    fam: Family,
+    face: Face,
+    params: &[Param],
+    extra: &[&'static str],
+) -> PyResult<Arc<dyn BatchFunction>> {
+    if !f.is_callable() {
+        return Err(PyTypeError::new_err(format!("{what}: expected a function, found {f}")));
+    }
+    let (inputs, outputs, keywords) = runtime::face_io(face);
+    let names = params.iter().map(|p| p.name.clone()).chain(keywords.iter().map(|k| k.to_string()));
+    Ok(Arc::new(PyFunction {
+        function: f.clone().unbind(),
+        family: fam,
+        params: names.collect(),
+        inputs: inputs.iter().chain(extra).copied().collect(),
+        outputs,
+        optional: if matches!(face, Face::Plain(_)) { runtime::optional_outputs(fam) } else { &[] },
+    }))
+}
+
+/// `saltus.register_rheology`, `register_kinetic_theory`, `register_mixing_length` and
+/// `register_fluctuation` (`python/saltus/closures.py`): a closure of `kind` (`local`,
+/// `kinetic`, `mixing_length`, `fluctuation`) whose faces are the Python functions of
+/// `functions` (`evaluate`, and `inverse` or `diffusivity`), shaped by `options`.
+#[pyfunction]
+#[pyo3(signature = (kind, name, functions, params, source, equation, limits, options))]
+#[allow(clippy::too_many_arguments)]
+pub fn register_faces(
+    kind: &str,
+    name: &str,
+    functions: &Bound<'_, PyDict>,
+    params: Option<&Bound<'_, PyDict>>,
+    source: String,
+    equation: String,
+    limits: Option<&Bound<'_, PyAny>>,
+    options: &Bound<'_, PyDict>,
+) -> PyResult<()> {
+    let function = |k: &str| functions.get_item(k).ok().flatten().filter(|v| !v.is_none());
+    let option = |k: &str| options.get_item(k).ok().flatten().filter(|v| !v.is_none());
+    let evaluate = function("evaluate").ok_or_else(|| PyTypeError::new_err("evaluate: expected a function"))?;
+    let (fam, faces): (Family, Vec<Face>) = match kind {
+        "local" | "kinetic" => (Family::Granular, Vec::new()),
+        "mixing_length" => (Family::Turbulence, vec![Face::MixingLength]),
+        "fluctuation" => (Family::Fluctuation, vec![Face::Draw, Face::Diffusivity]),
+        other => return Err(PyValueError::new_err(format!("unknown kind `{other}`"))),
+    };
+    let mut params_v = declared_params(params, fam, &faces)?;
+    let (function, shape) = match kind {
+        "local" => {
+            let control_name: String = option("control").map_or(Ok("i".to_string()), |c| c.extract())?;
+            let control = Control::from_name(&control_name).ok_or_else(|| {
+                PyValueError::new_err(format!(
+                    "control: `{control_name}`; allowed: \"i\" (inertial number), \"j\" (viscous number), \"k\" (J + alpha I^2)"
+                ))
+            })?;
+            let faces = [Face::Rheology(control), Face::Inverse(control)];
+            params_v = declared_params(params, fam, &faces)?;
+            let f = face_function(&evaluate, "friction_packing", fam, faces[0], &params_v, &[])?;
+            let inverse =
+                function("inverse").map(|g| face_function(&g, "inverse", fam, faces[1], &params_v, &[])).transpose()?;
+            (f, Shape::Local { control, inverse })
+        }
+        "kinetic" => {
+            params_v = declared_params(params, fam, &[Face::Kinetic])?;
+            // the elastic law's parameters, with the proposed model's defaults when not declared
+            let defaults = [
+                (
+                    "p0",
+                    0.05,
+                    ParamRange::positive(),
+                    "Pa",
+                    "elastic modulus P0 of the Johnson-Jackson pressure (eq 2.14)",
+                ),
+                (
+                    "phi_rlp",
+                    0.57,
+                    ParamRange::open(0.0, 1.0),
+                    "-",
+                    "random loose packing where the elastic pressure starts",
+                ),
+                (
+                    "phi_max",
+                    0.635,
+                    ParamRange::open(0.0, 1.0),
+                    "-",
+                    "maximum packing where the elastic pressure diverges",
+                ),
+                (
+                    "static_friction",
+                    0.146 + 0.228 * (0.4f64 / 0.232).tanh(),
+                    ParamRange::closed(0.0, 2.0),
+                    "-",
+                    "Coulomb friction mu_s of the elastic shear stress (eq 2.15; default eq B1 at mu_p = 0.4)",
+                ),
+            ];
+            for (n, v, range, unit, doc) in defaults {
+                if !params_v.iter().any(|p| p.name == n) {
+                    params_v.push(Param::new(n, v, range, unit, doc));
+                }
+            }
+            let saltation = option("saltation").map_or(Ok(false), |v| v.extract::<bool>())?;
+            let dissipation: String =
+                option("drag_dissipation").map_or(Ok("quadratic".to_string()), |v| v.extract())?;
+            let linear = match dissipation.as_str() {
+                "linear" => true,
+                "quadratic" => false,
+                other => {
+                    return Err(PyValueError::new_err(format!(
+                        "drag_dissipation: `{other}`; allowed: \"linear\" (c_J = 3, eq 2.25), \"quadratic\" (3 + 2 C_D^inf / C_D, eq 3.13)"
+                    )))
+                }
+            };
+            let f = face_function(&evaluate, "coefficients", fam, Face::Kinetic, &params_v, &[])?;
+            (f, Shape::Kinetic { saltation, linear_drag_dissipation: linear })
+        }
+        "mixing_length" => {
+            (face_function(&evaluate, "mixing_length", fam, Face::MixingLength, &params_v, &[])?, Shape::MixingLength)
+        }
+        _ => {
+            let mut variates = Vec::new();
+            let mut names: Vec<&'static str> = Vec::new();
+            if let Some(v) = option("variates") {
+                let d = v.cast::<PyDict>().map_err(|_| {
+                    PyTypeError::new_err("variates: a dict of input name -> \"normal\", \"exponential\" or \"uniform\"")
+                })?;
+                for (k, kind) in d.iter() {
+                    let (k, kind): (String, String) = (k.extract()?, kind.extract()?);
+                    let v = Variate::from_name(&kind).ok_or_else(|| {
+                        PyValueError::new_err(format!(
+                            "variates[{k:?}]: `{kind}`; allowed: \"normal\", \"exponential\", \"uniform\""
+                        ))
+                    })?;
+                    let (inputs, _, keywords) = runtime::face_io(Face::Draw);
+                    if inputs.contains(&k.as_str())
+                        || keywords.contains(&k.as_str())
+                        || params_v.iter().any(|p| p.name == k)
+                    {
+                        return Err(PyValueError::new_err(format!(
+                            "variates: `{k}` is already an input, keyword or parameter"
+                        )));
+                    }
+                    variates.push(v);
+                    names.push(leak(k));
+                }
+            }
+            let mut needs = Vec::new();
+            if let Some(n) = option("needs") {
+                for f in n.try_iter()? {
+                    let f: String = f?.extract()?;
+                    needs.push(match f.as_str() {
+                        "k" => Field::Tke,
+                        "omega" => Field::Omega,
+                        "nu_t" => Field::EddyViscosity,
+                        "reynolds_stress" => Field::ReynoldsStress,
+                        other => {
+                            return Err(PyValueError::new_err(format!(
+                                "needs: `{other}`; allowed: \"k\", \"omega\", \"nu_t\", \"reynolds_stress\""
+                            )))
+                        }
+                    });
+                }
+            }
+            let draw = face_function(&evaluate, "draw", fam, Face::Draw, &params_v, &names)?;
+            let diffusivity = function("diffusivity")
+                .ok_or_else(|| PyTypeError::new_err("diffusivity: expected a function (the mean-field face)"))?;
+            let diffusivity = face_function(&diffusivity, "diffusivity", fam, Face::Diffusivity, &params_v, &[])?;
+            (draw, Shape::Fluctuation { diffusivity, variates, needs: Needs::of(&needs) })
+        }
+    };
+    let limits = declared_limits(limits, &params_v)?;
+    runtime::register(RuntimeModel {
+        family: fam,
+        name: leak(name.to_string()),
+        source: leak(source),
+        equation: leak(equation),
+        params: params_v,
+        limits,
+        convention: DragReynolds::Interstitial,
+        depends_on_reynolds: true,
+        function,
+        shape,
+        build: saltus_closures::runtime::build,
+    })
+    .map_err(|e| PyValueError::new_err(format!("register ({fam}, {name:?}): {e}")))
+}
+
 /// `saltus.register_closure`: see `python/saltus/__init__.py`.
 #[pyfunction]
 #[pyo3(signature = (family, name, evaluate, params, source, equation, limits, reynolds, depends_on_reynolds))]
@@ -229,7 +453,13 @@ pub fn register_closure(
     depends_on_reynolds: bool,
 ) -> PyResult<()> {
     let fam = family_of(family)?;
-    let (inputs, outputs) = runtime::io(fam).ok_or_else(|| PyValueError::new_err(runtime::refused(fam)))?;
+    let (inputs, outputs) = runtime::io(fam).ok_or_else(|| {
+        PyValueError::new_err(format!(
+            "family `{fam}` takes its closures through saltus.register_rheology, register_kinetic_theory, \
+             register_mixing_length or register_fluctuation; register_closure takes the others, allowed: drag, hindrance, \
+             viscosity, wall_friction"
+        ))
+    })?;
     if !evaluate.is_callable() {
         return Err(PyTypeError::new_err(format!("evaluate: expected a function, found {evaluate}")));
     }
@@ -261,7 +491,7 @@ pub fn register_closure(
         function: evaluate.clone().unbind(),
         family: fam,
         params: params.iter().map(|p| p.name.clone()).collect(),
-        inputs,
+        inputs: inputs.to_vec(),
         outputs,
         optional: runtime::optional_outputs(fam),
     };
@@ -275,6 +505,7 @@ pub fn register_closure(
         convention,
         depends_on_reynolds,
         function: Arc::new(function),
+        shape: Shape::Plain,
         build: saltus_closures::runtime::build,
     })
     .map_err(|e| PyValueError::new_err(format!("register_closure({family:?}, {name:?}): {e}")))
@@ -318,4 +549,25 @@ pub fn closure_check<'py>(
         "outcomes": outcomes,
     });
     json_to_py(py, &d)
+}
+
+/// The `[python] modules` of a scene with its overrides (files absolute), for the Python
+/// package to import before it loads the scene.
+#[pyfunction]
+#[pyo3(signature = (scene, set=None))]
+pub fn scene_modules(
+    py: Python<'_>,
+    scene: std::path::PathBuf,
+    set: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Vec<String>> {
+    let set = crate::overrides(set)?;
+    saltus_core::scene::Scene::python_modules(&scene, &set).map_err(|e| crate::load_error(py, e))
+}
+
+/// The command line on `args` (the program name first) in this process, with the GIL
+/// released (the DEM calls Python closures from its threads): its exit code.
+#[pyfunction]
+pub fn cli_main(py: Python<'_>, args: Vec<String>) -> u8 {
+    let args = args.into_iter().map(std::ffi::OsString::from).collect();
+    py.detach(|| saltus::cli::main_from(args))
 }

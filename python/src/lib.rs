@@ -287,7 +287,10 @@ fn run<'py>(
     // a closure written in Python that raised (or returned something unusable) during the
     // run: its message, whatever the solver made of the NaN it got
     if let Some(f) = s.closures.failure() {
-        let place = Place { file: Some(scene.display().to_string()), key: None, io: false };
+        // the message starts with the closure's family: its table is the key
+        let family = f.split_whitespace().next().and_then(saltus_core::closure::Family::from_key);
+        let key = family.map(|fam| format!("closures.{fam}"));
+        let place = Place { file: Some(scene.display().to_string()), key, io: false };
         return Err(place.attach(py, RunError::new_err(f)));
     }
     let outcome = result.map_err(|e| run_error(py, e))?;
@@ -458,6 +461,11 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Closure>()?;
     m.add_function(wrap_pyfunction!(closures::register_closure, m)?)?;
     m.add_function(wrap_pyfunction!(closures::unregister_closure, m)?)?;
+    m.add_function(wrap_pyfunction!(closures::register_faces, m)?)?;
+    m.add_function(wrap_pyfunction!(closures::scene_modules, m)?)?;
+    m.add_function(wrap_pyfunction!(closures::cli_main, m)?)?;
+    // this process imports a scene's [python] modules (saltus.run, python -m saltus)
+    saltus_core::runtime::set_python_host();
     m.add_function(wrap_pyfunction!(closures::closure_check, m)?)?;
     Ok(())
 }

@@ -42,6 +42,7 @@ fn register(family: Family, name: &'static str, params: Vec<Param>, law: Box<Law
         convention: DragReynolds::Interstitial,
         depends_on_reynolds: false,
         function: function.clone(),
+        shape: Shape::Plain,
         build,
     })
     .unwrap();
@@ -263,10 +264,15 @@ fn registration_refuses_what_a_scene_could_not_use() {
         convention: DragReynolds::Interstitial,
         depends_on_reynolds: true,
         function: Arc::new(Function { law: Box::new(|_, _, _| Ok(1)), calls: AtomicUsize::new(0) }),
+        shape: Shape::Plain,
         build,
     };
+    // a granular closure is a local rheology or a coefficient set, not one plain function
     let e = runtime::register(model(Family::Granular, "rt_mu", Vec::new())).unwrap_err();
-    assert!(e.contains("granular") && e.contains("allowed: drag, hindrance, viscosity, wall_friction"), "{e}");
+    assert!(e.contains("`granular`") && e.contains("local rheology"), "{e}");
+    // two-equation turbulence has no run-time shape
+    let e = runtime::register(model(Family::Turbulence, "rt_k_omega", Vec::new())).unwrap_err();
+    assert!(e.contains("two-equation"), "{e}");
     let e = runtime::register(model(Family::Drag, "dallavalle", Vec::new())).unwrap_err();
     assert!(e.contains("built-in"), "{e}");
     let e = runtime::register(model(Family::Drag, "my law", Vec::new())).unwrap_err();

@@ -127,7 +127,9 @@ where
     };
     let Some(entry) = registry::models_of(family).into_iter().find(|m| m.name == name) else {
         if let Some(model) = runtime::lookup(family, &name) {
-            return runtime_closure(&model, &table, file, key);
+            let mut m = runtime_closure(&model, &table, file, key)?;
+            prepare(&mut m, &table);
+            return Ok(m);
         }
         return Err(Error::UnknownModel {
             file: file.into(),

@@ -14,6 +14,7 @@ mod closures;
 mod domain;
 mod lagrangian;
 mod overrides;
+mod python;
 pub mod shields;
 mod solver;
 mod tables;
@@ -23,6 +24,7 @@ use std::path::{Path, PathBuf};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
+use crate::closure::Family;
 use crate::error::{Error, Result};
 use crate::needs::{Field, Needs};
 use crate::param::ParamRange;
@@ -33,6 +35,7 @@ pub use lagrangian::{
     Case, DragVelocity, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, FREY_LEVELS, MAX_PARTICLES, MAX_SIDE_DIAMETERS,
 };
 pub use overrides::{apply_override, parse_table};
+pub use python::Python;
 pub use solver::{
     default_elastic_phi_rlp, Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver,
     SolverKind, Surface, ELASTIC_PHI_RLP, MAX_TIME,
@@ -72,6 +75,9 @@ pub struct Scene {
     /// reference data, in the order of the scene file, paths absolute
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub reference: Vec<Reference>,
+    /// the Python files or modules registering the scene's closures, files absolute
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub python: Option<Python>,
     /// file the scene was read from (for messages and relative paths)
     #[serde(skip)]
     pub path: PathBuf,
@@ -175,6 +181,22 @@ impl Scene {
         Self::from_file_with(path, &[])
     }
 
+    /// The `[python] modules` of a scene file with its overrides, resolved as a load
+    /// resolves them (files absolute), read before anything else of the scene: what the
+    /// Python package imports before it loads the scene.
+    pub fn python_modules(path: impl AsRef<Path>, overrides: &[String]) -> Result<Vec<String>> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| Error::Io { file: path.into(), source })?;
+        let mut table = parse_table(&text, path)?;
+        for o in overrides {
+            apply_override(&mut table, o)?;
+        }
+        match table.remove("python") {
+            Some(v) => Ok(Python::from_value(v, path)?.modules),
+            None => Ok(Vec::new()),
+        }
+    }
+
     /// Read a scene file and apply `--set KEY=VALUE` overrides before resolving it.
     pub fn from_file_with(path: impl AsRef<Path>, overrides: &[String]) -> Result<Scene> {
         let path = path.as_ref();
@@ -190,6 +212,11 @@ impl Scene {
     /// to resolve reference paths).
     pub fn from_table(mut table: toml::Table, file: &Path) -> Result<Scene> {
         require_tables(&table, file)?;
+        let python = table.remove("python").map(|v| Python::from_value(v, file)).transpose()?;
+        // before the closures: their names are registered by the modules
+        if let Some(p) = python.as_ref().filter(|_| !crate::runtime::python_host()) {
+            return Err(p.refused(file));
+        }
         let closures_value = table.remove("closures");
         let given = shields::Given::of(&table);
         let mut base: Base = de_path(toml::Value::Table(table), file, "")?;
@@ -212,9 +239,17 @@ impl Scene {
             closures,
             output: base.output,
             reference: base.reference,
+            python,
             path: file.to_path_buf(),
         };
         scene.resolve()?;
+        // a closure registered at run time that failed while the scene resolved (a
+        // granular law's jammed packing): its message, not that of the NaN it gave
+        if let Some(message) = scene.closures.failure() {
+            let family = message.split_whitespace().next().and_then(Family::from_key);
+            let key = family.map_or_else(|| "closures".to_string(), |f| format!("closures.{f}"));
+            return Err(Error::Key { file: file.into(), key, message });
+        }
         scene.check_needs()?;
         scene.check_active()?;
         Ok(scene)
