@@ -27,7 +27,8 @@ def mu_i(i, mu_s, mu_2, i0, phi_c, b, **grain):
 
 def mu_i_inverse(phi, mu_s, mu_2, i0, phi_c, b, **grain):
     """I = (phi_c / phi - 1) / b"""
-    with np.errstate(divide="ignore"):
+    # phi = 0 gives +inf (then overflow when tiny): the where below takes it
+    with np.errstate(divide="ignore", over="ignore"):
         x = (phi_c / phi - 1.0) / b
     return np.where(phi >= phi_c, 0.0, np.where(phi <= 0.0, np.inf, x))
 
@@ -195,7 +196,8 @@ def mu_i(i, mu_s, mu_2, i0, phi_c, b, **grain):
 
 def inverse(phi, mu_s, mu_2, i0, phi_c, b, **grain):
     """I = (phi_c / phi - 1) / b"""
-    with np.errstate(divide="ignore"):
+    # phi = 0 gives +inf (then overflow when tiny): the where below takes it
+    with np.errstate(divide="ignore", over="ignore"):
         x = (phi_c / phi - 1.0) / b
     return np.where(phi >= phi_c, 0.0, np.where(phi <= 0.0, np.inf, x))
 
