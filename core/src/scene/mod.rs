@@ -29,13 +29,15 @@ use crate::param::ParamRange;
 pub use closures::{closure_from_value, de_concrete, granular_from_value, Closures, DEFAULT_MODELS};
 pub use domain::{Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT, MAX_STRETCH_DECADES};
 pub use lagrangian::{
-    Case, DragVelocity, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, FREY_LEVELS, MAX_PARTICLES, MAX_SIDE_DIAMETERS,
+    Case, DragVelocity, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, FREY_LEVELS, MAX_FLUID_CELLS, MAX_PARTICLES,
+    MAX_SIDE_DIAMETERS,
 };
 pub use overrides::{apply_override, parse_table};
 pub use solver::{
     default_elastic_phi_rlp, Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver,
     SolverKind, Surface, ELASTIC_PHI_RLP, MAX_TIME,
 };
+use tables::STIFFNESS;
 pub use tables::{
     Contact, ContactModel, Fluid, Meta, NormalForce, Output, Particles, Physics, Reference, MAX_SNAPSHOTS,
     MAX_TIMESERIES_ROWS, TIMESERIES_ROWS,
@@ -245,8 +247,11 @@ impl Scene {
         if self.particles.contact.stiffness.is_none() {
             let dry = self.solver.lagrangian.fluid == FluidMode::Off;
             let rho_f = if dry { 0.0 } else { self.fluid.density };
-            self.particles.contact.stiffness =
-                self.particles.rigid_stiffness(rho_f, self.physics.gravity, case.bed_phi, case.bed_height);
+            // a default beyond the range of the key is left out, as one that cannot be derived
+            self.particles.contact.stiffness = self
+                .particles
+                .rigid_stiffness(rho_f, self.physics.gravity, case.bed_phi, case.bed_height)
+                .filter(|k| STIFFNESS.contains(*k));
         }
         if self.domain.bed_phi.is_none() {
             self.domain.bed_phi = match self.solver.kind {
@@ -359,8 +364,7 @@ impl Scene {
                 if self.particles.contact.law == ContactModel::Linear && self.particles.contact.stiffness.is_none() {
                     return Err(key(
                         "particles.contact.stiffness",
-                        "missing, and the rigid-limit default needs grains heavier than the fluid under gravity; give it"
-                            .into(),
+                        format!("missing, and the rigid-limit default needs grains heavier than the fluid under gravity, inside {STIFFNESS}; give it"),
                     ));
                 }
                 // a lid (Fry et al. 2024's Couette bedload) or a symmetry plane bounds the

@@ -161,6 +161,9 @@ fn default_friction() -> f64 {
 /// k_n = 1e4 N/m of Chassagne 2023 case 1 (9.9e3 before rounding).
 const RIGID_OVERLAP: f64 = 4.0e-4;
 
+/// Range of `particles.contact.stiffness` (N/m).
+pub(super) const STIFFNESS: ParamRange = ParamRange::closed(1e-6, 1e12);
+
 impl Particles {
     /// Default normal stiffness of the linear law (N/m) in the rigid limit: the weight
     /// of the bed column over one grain, P d^2 with P = (rho_p - rho_f) g phi H (rho_f
@@ -184,7 +187,7 @@ impl Particles {
         }
         let c = &self.contact;
         if let Some(k) = c.stiffness {
-            check(f, "particles.contact.stiffness", k, ParamRange::closed(1e-6, 1e12))?;
+            check(f, "particles.contact.stiffness", k, STIFFNESS)?;
         }
         check(f, "particles.contact.tangential_ratio", c.tangential_ratio, ParamRange::closed(0.0, 10.0))?;
         check(f, "particles.contact.young", c.young, ParamRange::closed(1.0, 1e13))?;
