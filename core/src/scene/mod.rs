@@ -96,8 +96,6 @@ struct Base {
     solver: Solver,
     #[serde(default)]
     output: Output,
-    #[serde(default, deserialize_with = "tables::one_or_many")]
-    reference: Vec<Reference>,
 }
 
 /// Keys that must hold a table. serde reads a struct from an array too (by position), so
@@ -192,7 +190,9 @@ impl Scene {
     pub fn from_table(mut table: toml::Table, file: &Path) -> Result<Scene> {
         require_tables(&table, file)?;
         let closures_value = table.remove("closures");
+        let reference_value = table.remove("reference");
         let base: Base = de_path(toml::Value::Table(table), file, "")?;
+        let reference = tables::references(reference_value, file)?;
         base.fluid.check(file)?;
         base.particles.check(file)?;
         base.physics.check(file)?;
@@ -210,7 +210,7 @@ impl Scene {
             solver: base.solver,
             closures,
             output: base.output,
-            reference: base.reference,
+            reference,
             path: file.to_path_buf(),
         };
         scene.resolve()?;
@@ -275,6 +275,15 @@ impl Scene {
             r.file = absolute(&dir, &r.file);
         }
         Ok(())
+    }
+
+    /// The scene's name in messages, figures and output folders: `meta.name`, else the
+    /// file's stem, else `run`.
+    pub fn label(&self) -> String {
+        if !self.meta.name.is_empty() {
+            return self.meta.name.clone();
+        }
+        self.path.file_stem().map_or_else(|| "run".into(), |x| x.to_string_lossy().into_owned())
     }
 
     /// End time of the active solver's run (s), with its key.
