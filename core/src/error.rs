@@ -94,23 +94,34 @@ impl Error {
     }
 }
 
-/// Longest run of non-blank characters an error repeats in full: far above any key path,
-/// model name or file path of a scene.
+/// Longest word an error repeats in full: far above any key path, model name or file
+/// path of a scene.
 pub const LONGEST_WORD: usize = 240;
 
-/// `text` with every run of non-blank characters longer than [`LONGEST_WORD`] cut to its
-/// first 60 characters and its length, so that a key, a name or a value pasted by mistake
-/// (a megabyte of it) is named, not echoed in full.
+/// What ends a word of [`clip_words`]: blanks and the punctuation that quotes or follows
+/// a key, a name or a value in a message.
+fn ends_word(c: char) -> bool {
+    c.is_whitespace() || "`'\",;:()[]{}=<>".contains(c)
+}
+
+/// `text` with every word (a run of characters between blanks and quoting punctuation)
+/// longer than [`LONGEST_WORD`] cut to its first 60 characters and its length, so that
+/// a key, a name or a value pasted by mistake (a megabyte of it) is named, not echoed in
+/// full.
 pub fn clip_words(text: &str) -> Cow<'_, str> {
-    if !text.split_whitespace().any(|w| w.len() > LONGEST_WORD) {
+    if !text.split(ends_word).any(|w| w.len() > LONGEST_WORD) {
         return Cow::Borrowed(text);
     }
     let mut out = String::with_capacity(text.len().min(4096));
     let mut rest = text;
-    while let Some(start) = rest.find(|c: char| !c.is_whitespace()) {
+    loop {
+        let start = rest.find(|c: char| !ends_word(c)).unwrap_or(rest.len());
         out.push_str(&rest[..start]);
         rest = &rest[start..];
-        let end = rest.find(char::is_whitespace).unwrap_or(rest.len());
+        if rest.is_empty() {
+            break;
+        }
+        let end = rest.find(ends_word).unwrap_or(rest.len());
         let word = &rest[..end];
         let chars = word.chars().count();
         if chars > LONGEST_WORD {
@@ -121,7 +132,6 @@ pub fn clip_words(text: &str) -> Cow<'_, str> {
         }
         rest = &rest[end..];
     }
-    out.push_str(rest);
     Cow::Owned(out)
 }
 
@@ -135,7 +145,7 @@ mod tests {
         let e = Error::Key { file: "s.toml".into(), key: key.clone(), message: format!("unknown field `{key}`") };
         let text = e.to_string();
         assert!(text.len() < 400, "{} characters", text.len());
-        assert!(text.contains("domain.kkkk") && text.contains("(1000007 characters)"), "{text}");
+        assert!(text.contains("key `domain.kkkk") && text.ends_with("(1000007 characters)`"), "{text}");
         // words of ordinary length, blanks included, are kept as they are
         let e = Error::Key { file: "s.toml".into(), key: "a.b".into(), message: "two  words\tand é".into() };
         assert_eq!(e.to_string(), "s.toml: key `a.b`: two  words\tand é");
