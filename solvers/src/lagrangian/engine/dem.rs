@@ -489,7 +489,7 @@ impl Dem {
         let mut deepest: Option<(usize, f64)> = None;
         self.each_overlap(|a, delta, d| {
             let f = delta / d;
-            if deepest.map_or(true, |(_, g)| f > g) {
+            if !matches!(deepest, Some((_, g)) if g >= f) {
                 deepest = Some((a, f));
             }
         });
