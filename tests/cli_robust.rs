@@ -268,14 +268,16 @@ fn a_dem_run_writes_a_paraview_series_that_reads_back() {
             (attr("timestep").parse().unwrap(), attr("part").parse().unwrap(), attr("file"))
         })
         .collect();
-    // the flow lasts 0.1 s: snapshots at the fluid updates at or after 0, 0.02, ... 0.08 s
+    // the flow lasts 0.1 s: snapshots of the state at the ends of the fluid periods at or
+    // after 0, 0.02, ... 0.1 s (the flow's first state and its last included), each at the
+    // time of the state it holds
     let times: Vec<f64> = entries.iter().filter(|e| e.1 == 0).map(|e| e.0).collect();
-    assert_eq!(times.len(), 5, "{pvd}");
+    assert_eq!(times.len(), 6, "{pvd}");
     assert_eq!(times[0], 0.0);
     for (k, t) in times.iter().enumerate() {
         assert!(*t >= 0.02 * k as f64 - 1e-12 && *t < 0.02 * k as f64 + 0.011, "{times:?}");
     }
-    assert_eq!(entries.iter().filter(|e| e.1 == 1).count(), 5, "a column per snapshot");
+    assert_eq!(entries.iter().filter(|e| e.1 == 1).count(), 6, "a column per snapshot");
     // the last particle snapshot holds the particles of the run, at finite positions
     let last = &entries.iter().rfind(|e| e.1 == 0).unwrap().2;
     let text = std::fs::read_to_string(vtk.join(last)).unwrap();
