@@ -21,7 +21,8 @@ macro_rules! errln {
 
 /// `e` with each of its causes once: an error whose text already ends with its cause's
 /// (an I/O error that names its OS error and also chains it) does not repeat it, which
-/// anyhow's `{:#}` would.
+/// anyhow's `{:#}` would. A run of characters far longer than any key or path (a value
+/// pasted by mistake) is cut ([`saltus_core::error::clip_words`]).
 pub fn describe(e: &anyhow::Error) -> String {
     let mut s = e.to_string();
     for cause in e.chain().skip(1) {
@@ -31,7 +32,7 @@ pub fn describe(e: &anyhow::Error) -> String {
             s.push_str(&t);
         }
     }
-    s
+    saltus_core::error::clip_words(&s).into_owned()
 }
 
 pub mod check;

@@ -45,12 +45,15 @@ enum Command {
         /// override one key (repeatable)
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
-        /// output folder (default: the scene's output.dir, else out/<scene name>)
+        /// output folder (default: the --restart folder, else the scene's output.dir, else
+        /// out/<scene name>); a folder where the run would write over its scene file or a
+        /// reference file is refused
         #[arg(long)]
         out: Option<PathBuf>,
         /// continue the DEM run whose output folder (holding checkpoint.bin) is DIR, bit for
-        /// bit as if it had not stopped; the scene must be the checkpoint's (the end time,
-        /// step cap, threads and [output] may change)
+        /// bit as if it had not stopped, writing into DIR unless --out says otherwise; the
+        /// scene must be the checkpoint's (the end time, step cap, threads and [output] may
+        /// change)
         #[arg(long, value_name = "DIR")]
         restart: Option<PathBuf>,
         /// stop the run after SECONDS of wall-clock time, writing its outputs (and a DEM
@@ -280,7 +283,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             // the solver's set-up inside `run` is `validate` (`resolve`), refused before
             // any output is written: loading the schema is all that is left to do here
             let s = Scene::from_file_with(&scene, &set)?;
-            let out = out.unwrap_or_else(|| saltus::runner::default_out(&s));
+            // a continued run goes on in the folder it continues, unless told otherwise
+            let out = out
+                .or_else(|| restart.as_deref().map(saltus_solvers::run::checkpoint::folder))
+                .unwrap_or_else(|| saltus::runner::default_out(&s));
             let bar = saltus::runner::progress_bar(!quiet && std::io::stderr().is_terminal());
             if let Err(e) = saltus::runner::catch_interrupt() {
                 saltus::errln!("warning: {e:#}; an interrupt ends the run without writing its outputs");
@@ -411,7 +417,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Diagnose { dir, closures, out, phi_min } => {
             let d = saltus::diagnose::diagnose(&dir, &closures, saltus::diagnose::Options { phi_min })?;
             let out = out.unwrap_or_else(|| dir.join("diagnose"));
-            d.write(&out)?;
+            let written = d.write(&out)?;
+            for w in &written.warnings {
+                saltus::errln!("warning: {w}");
+            }
             out!("{}", d.text());
             outln!("outputs: {}", out.display());
         }

@@ -416,12 +416,14 @@ pub fn draw_profiles(
     let (z0, z1) = {
         let z = curves.iter().filter_map(|(_, c)| c.get("z")).flatten().copied().filter(|z| z.is_finite());
         let (lo, hi) = z.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), z| (a.min(z), b.max(z)));
-        if !(lo.is_finite() && hi > lo) {
-            bail!("the profiles have no z extent");
+        if !(lo.is_finite() && hi.is_finite()) {
+            bail!("the profiles hold no finite z");
         }
+        // one height (a comparison with one usable cell) is drawn in a window of its own
+        // height about it (at least a millimetre)
+        let pad = if hi > lo { 0.02 * (hi - lo) } else { (0.5 * hi.abs()).max(1e-3) };
         // no padding below a bottom at z = 0 (a `-0.0` label)
-        let pad = 0.02 * (hi - lo);
-        (if lo >= 0.0 { 0.0 } else { lo - pad }, hi + pad)
+        (if lo >= 0.0 && hi > lo { 0.0 } else { lo - pad }, hi + pad)
     };
     let width = (380 * shown.len() as u32 + 20).max(860);
     let root = BitMapBackend::new(png, (width, 680)).into_drawing_area();

@@ -331,18 +331,17 @@ fn draw_run(
         }
     };
     let s = &r.summary;
-    let name = if scene.meta.name.is_empty() { "run" } else { scene.meta.name.as_str() };
+    let name = scene.label();
+    let t = decimal(s.sim_time_s);
     let title = match (ending, s.qs_star, s.shields) {
         (Ending::Unstable(_) | Ending::Interrupted, _, _) => {
-            format!("{name}: stopped ({}) at t = {:.3} s, last good state", s.ending, s.sim_time_s)
+            format!("{name}: stopped ({}) at t = {t} s, last good state", s.ending)
         }
-        (_, Some(q), Some(sh)) => {
-            format!("{name}: {} at t = {:.1} s, qs* = {q:.3}, Shields {sh:.3}", s.ending, s.sim_time_s)
-        }
-        _ => format!("{name}: {} at t = {:.1} s, no transport measured", s.ending, s.sim_time_s),
+        (_, Some(q), Some(sh)) => format!("{name}: {} at t = {t} s, qs* = {q:.3}, Shields {sh:.3}", s.ending),
+        _ => format!("{name}: {} at t = {t} s, no transport measured", s.ending),
     };
     let reference: Vec<Reference> = reference.iter().map(|(label, table)| Reference { label, table }).collect();
-    plot::draw_profiles(&title, &RUN_PANELS, &[(name.to_string(), &r.profiles)], &reference, png)
+    plot::draw_profiles(&title, &RUN_PANELS, &[(name, &r.profiles)], &reference, png)
 }
 
 /// The scene's reference data (`[reference]` or `[[reference]]`): per file a legend label
@@ -418,14 +417,7 @@ pub fn read_columns(path: &Path, names: &[String]) -> anyhow::Result<Table> {
 pub fn default_out(s: &Scene) -> PathBuf {
     match &s.output.dir {
         Some(d) => PathBuf::from(d),
-        None => {
-            let name = if s.meta.name.is_empty() {
-                s.path.file_stem().map_or_else(|| "run".into(), |x| x.to_string_lossy().into_owned())
-            } else {
-                s.meta.name.clone()
-            };
-            PathBuf::from("out").join(name)
-        }
+        None => PathBuf::from("out").join(s.label()),
     }
 }
 

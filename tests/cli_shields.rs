@@ -86,7 +86,7 @@ fn the_shields_number_sets_a_slope_or_a_pressure_gradient() {
 
 #[test]
 fn contradictions_and_drives_the_flow_cannot_take_are_refused() {
-    let cases: [(&str, &str, &[&str]); 9] = [
+    let cases: [(&str, &str, &[&str]); 10] = [
         ("given", "[physics]\nslope = 0.1\nshields = 0.3\ndrive = \"water_depth\"\n[domain]\nwater_depth = 0.1\ncells = 10\n", &["domain.water_depth", "physics.shields"]),
         ("no_drive", "[physics]\nslope = 0.1\nshields = 0.3\n[domain]\ncells = 10\n", &["physics.drive", "missing"]),
         ("no_shields", "[physics]\nslope = 0.1\ndrive = \"slope\"\n[domain]\nwater_depth = 0.1\ncells = 10\n", &["physics.shields", "missing"]),
@@ -96,6 +96,9 @@ fn contradictions_and_drives_the_flow_cannot_take_are_refused() {
         ("cells", "[domain]\nwater_depth = 0.1\ncell_size = \"d/4\"\ncells = 10\n", &["domain.cells", "cell_size"]),
         ("stretched", "[domain]\nwater_depth = 0.1\ncell_size = 1e-3\nstretching = 1.1\n", &["domain.cell_size", "stretching"]),
         ("size_text", "[domain]\nwater_depth = 0.1\ncell_size = \"quarter\"\n", &["domain.cell_size", "d/4"]),
+        // a DEM scene whose size makes a million cells: refused by the column's own cap
+        // (1e5, below the DEM's 1e6) before any run
+        ("dem_cells", "[domain]\nwater_depth = 100.0\ncell_size = 1e-4\n[solver]\ntype = \"lagrangian\"\n", &["domain.cell_size", "100000 cells"]),
     ];
     for (name, extra, words) in cases {
         let o = check_scene(&format!("shields_bad_{name}"), &format!("{extra}{GRANULAR}"));

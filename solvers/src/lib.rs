@@ -95,7 +95,9 @@ pub fn run(scene: &Scene, out: &Path, observer: &mut dyn Observer) -> Result<Run
     run_with(scene, out, observer, &RunOptions::default())
 }
 
-/// [`run()`], from a checkpoint when `options` says so. The output folder is made first,
+/// [`run()`], from a checkpoint when `options` says so. An output folder where the run
+/// would write over one of its inputs is refused ([`output::check_out`]). The output
+/// folder is made first,
 /// before the set-up and any deposition, with `timeseries.csv` in it; the time series,
 /// snapshots and checkpoints are written while the run goes ([`run::history`]). A
 /// checkpoint that is missing, damaged, of another solver or of a scene that differs in
@@ -106,6 +108,7 @@ pub fn run_with(
     observer: &mut dyn Observer,
     options: &RunOptions,
 ) -> Result<RunOutcome, Error> {
+    output::check_out(out, scene)?;
     let restart = options.restart.as_deref().map(run::checkpoint::read).transpose()?;
     if let Some(r) = &restart {
         check_restart(scene, r)?;

@@ -190,6 +190,46 @@ fn io(file: PathBuf) -> impl FnOnce(std::io::Error) -> Error {
     move |source| Error::Io { file, source }
 }
 
+/// The files [`write_run`] writes, with the time series, in the order of the manifest.
+pub const RUN_FILES: [&str; 5] = ["profiles.csv", "summary.json", "scene.toml", "manifest.json", "timeseries.csv"];
+
+/// Refuse an output folder `dir` that is an empty path, or where a file the run writes
+/// ([`RUN_FILES`], the checkpoint) is one of the run's inputs (the scene file, a reference
+/// file). The resolved scene may be rewritten over the scene file it was resolved from
+/// when the text is the same (a run of a folder's own `scene.toml` into that folder,
+/// `--restart` included): nothing is lost then.
+pub fn check_out(dir: &Path, scene: &Scene) -> Result<(), Error> {
+    let file = scene.path.display();
+    if dir.as_os_str().is_empty() {
+        return Err(Error::Invalid(format!(
+            "{file}: the output folder is an empty path; give a folder (--out or output.dir), or leave output.dir out for out/<meta.name>"
+        )));
+    }
+    let same = |a: &Path, b: &Path| matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y);
+    let inputs = std::iter::once(("the scene file", scene.path.clone()))
+        .chain(scene.reference.iter().map(|r| ("the reference file", PathBuf::from(&r.file))));
+    for (what, input) in inputs {
+        for name in RUN_FILES.iter().chain([&crate::run::checkpoint::FILE]) {
+            let written = dir.join(name);
+            if !same(&written, &input) {
+                continue;
+            }
+            if *name == "scene.toml" && what == "the scene file" {
+                let unchanged = std::fs::read_to_string(&input).ok() == Some(scene.to_toml()?);
+                if unchanged {
+                    continue;
+                }
+            }
+            return Err(Error::Invalid(format!(
+                "{file}: the run would write {} over {what} {}; choose another output folder (--out or output.dir)",
+                written.display(),
+                input.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Write `profiles.csv`, `summary.json`, `scene.toml` (resolved) and `manifest.json` into
 /// `dir` (created if needed).
 pub fn write_run(dir: &Path, scene: &Scene, profiles: &Profiles, summary: &Summary) -> Result<(), Error> {
@@ -217,7 +257,7 @@ pub fn write_run(dir: &Path, scene: &Scene, profiles: &Profiles, summary: &Summa
             ("turbulence", name(cl.turbulence.as_deref().map(|m| m as &dyn saltus_core::Describe))),
             ("fluctuation", name(cl.fluctuation.as_deref().map(|m| m as &dyn saltus_core::Describe))),
         ],
-        files: vec!["profiles.csv", "summary.json", "scene.toml", "manifest.json", "timeseries.csv"],
+        files: RUN_FILES.to_vec(),
         wall_time_s: summary.wall_time_s,
     };
     let json = serde_json::to_string_pretty(&manifest).map_err(|e| Error::Invalid(format!("manifest: {e}")))?;

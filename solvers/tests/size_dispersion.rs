@@ -55,3 +55,30 @@ fn no_dispersion_keeps_the_monodisperse_bed() {
     assert_eq!(a.particles().x, b.particles().x);
     assert_eq!(a.particles().z, b.particles().z);
 }
+
+#[test]
+fn grains_of_two_sizes_leave_no_negative_coordination_or_dissipation() {
+    // solvers/tests/fixtures/dispersed_bed_coordination.toml: coordination down to -632
+    // in the bed when the contact count was spread with the signed share of the stress
+    saltus_closures::link();
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/dispersed_bed_coordination.toml");
+    let scene = Scene::from_file(&file).unwrap_or_else(|e| panic!("{e}"));
+    let mut m = Lagrangian::new(&scene, Config::from_scene(&scene).expect("config")).expect("solver");
+    let ending = saltus_solvers::run::drive(&mut m, &mut saltus_solvers::run::Quiet).ending;
+    assert_eq!(ending, saltus_solvers::run::Ending::EndTime);
+    let profiles = saltus_solvers::run::Stepper::report(&m, &ending, &Default::default()).profiles;
+    let phi = profiles.get("phi").expect("phi");
+    for key in ["coordination", "dissipation"] {
+        let v = profiles.get(key).unwrap_or_else(|| panic!("no {key}"));
+        let held: Vec<(usize, f64)> = v.iter().copied().enumerate().filter(|(_, x)| !x.is_nan()).collect();
+        assert!(held.len() > 10, "{key}: {held:?}");
+        assert!(held.iter().all(|(_, x)| *x >= 0.0 && x.is_finite()), "{key}: {held:?}");
+    }
+    // a packed bed: the median Z of the slices with phi above 0.5 is that of a frictional
+    // packing, 4 to 7 (lower at the rough layer, whose fixed grains' contacts are not
+    // computed)
+    let z = profiles.get("coordination").unwrap();
+    let mut dense: Vec<f64> = z.iter().zip(phi).filter(|(_, p)| **p > 0.5).map(|(z, _)| *z).collect();
+    dense.sort_by(f64::total_cmp);
+    assert!(dense.len() > 10 && (4.0..7.0).contains(&dense[dense.len() / 2]), "{dense:?}");
+}

@@ -3,6 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
+use anyhow::Context;
+
 use plotters::prelude::SeriesLabelPosition;
 use saltus_solvers::Profiles;
 
@@ -126,6 +128,7 @@ impl Comparison {
         let csv = dir.join(format!("{}.csv", self.stem()));
         self.table().write_csv_file(&csv)?;
         let png = dir.join(format!("{}.png", self.stem()));
+        let context = || format!("{}: cannot draw", png.display());
         // one column name for both, so that the measured symbols overlay the line
         let mut line = Profiles::default();
         line.push("z", self.z.clone());
@@ -147,7 +150,8 @@ impl Comparison {
             &[("predicted".into(), &line)],
             &[Reference { label: "measured", table: &marks }],
             &png,
-        )?;
+        )
+        .with_context(context)?;
         Ok([csv, png])
     }
 }

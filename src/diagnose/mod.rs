@@ -51,6 +51,16 @@ pub struct ClosureDiagnosis {
     pub g0_fit: Option<G0Fit>,
 }
 
+/// What [`Diagnosis::write`] wrote.
+#[derive(Clone, Debug, Default)]
+pub struct Written {
+    /// the files written
+    pub files: Vec<PathBuf>,
+    /// the comparisons that could not be written, each naming its closure, quantity and
+    /// why
+    pub warnings: Vec<String>,
+}
+
 /// Every closure's comparisons on one run.
 #[derive(Clone, Debug)]
 pub struct Diagnosis {
@@ -108,8 +118,9 @@ impl Diagnosis {
     }
 
     /// Write `summary.csv` and every comparison's CSV and PNG into `out`; returns the
-    /// files written.
-    pub fn write(&self, out: &Path) -> anyhow::Result<Vec<PathBuf>> {
+    /// files written. A comparison whose files cannot be written is told in the warnings,
+    /// naming its closure, quantity and file, and the others are written all the same.
+    pub fn write(&self, out: &Path) -> anyhow::Result<Written> {
         std::fs::create_dir_all(out).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", out.display()))?;
         let mut written = Vec::new();
         let summary = out.join("summary.csv");
@@ -162,10 +173,20 @@ impl Diagnosis {
             std::fs::write(&path, text).map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", path.display()))?;
             written.push(path);
         }
+        let mut warnings = Vec::new();
         for c in self.comparisons().filter(|c| c.cells() > 0) {
-            written.extend(c.write(out)?);
+            match c.write(out) {
+                Ok(files) => written.extend(files),
+                Err(e) => warnings.push(format!(
+                    "{}: {} of `{}` ({} cells) not written: {e:#}",
+                    out.display(),
+                    c.quantity,
+                    c.closure,
+                    c.cells()
+                )),
+            }
         }
-        Ok(written)
+        Ok(Written { files: written, warnings })
     }
 
     /// The short table printed by the command.

@@ -138,6 +138,8 @@ pub const CELL_DIAMETERS: f64 = 20.0;
 pub const FLUID_CELLS_PER_DIAMETER: f64 = 30.0;
 /// Most particles of one DEM run.
 pub const MAX_PARTICLES: f64 = 1.0e7;
+/// Most cells of the DEM's fluid column.
+pub const MAX_FLUID_CELLS: usize = 1_000_000;
 /// Longest side of the box in grain diameters (bounds the neighbour grid).
 pub const MAX_SIDE_DIAMETERS: f64 = 1.0e4;
 /// Packing of the released lattice of `initial = "bed"` (cubic, spacing 1.1 d).
@@ -299,7 +301,10 @@ impl LagrangianSettings {
         self.width.get_or_insert(CELL_DIAMETERS * c.d);
         if self.cells.is_none() {
             let h = c.bed_height + c.water_depth;
-            self.cells = Some(((h * FLUID_CELLS_PER_DIAMETER / c.d).round() as usize).max(2));
+            let n = ((h * FLUID_CELLS_PER_DIAMETER / c.d).round() as usize).max(2);
+            // a default over the cap is left out (so that the resolved scene passes the
+            // check of a given count), refused by `check_active` only if the DEM runs
+            self.cells = (n <= MAX_FLUID_CELLS).then_some(n);
         }
         self.granular_fields.get_or_insert(self.fluid != FluidMode::Off);
         if self.settle_time.is_none() {
@@ -310,8 +315,9 @@ impl LagrangianSettings {
             let rho_f = if self.fluid == FluidMode::Off { 0.0 } else { c.rho_f };
             let g_buoyant = c.gravity.abs() * (1.0 - rho_f / c.rho_p);
             let t = SETTLE_FALLS * (2.0 * release / g_buoyant).sqrt();
-            // round to a millisecond so that the resolved scene reads cleanly
-            self.settle_time = (t.is_finite() && t > 0.0).then(|| (t * 1e3).round() / 1e3);
+            // round to a millisecond so that the resolved scene reads cleanly; a default
+            // beyond the range of the key is left out, as one that cannot be derived
+            self.settle_time = (t.is_finite() && t > 0.0 && t <= MAX_TIME).then(|| (t * 1e3).round() / 1e3);
         }
     }
 
@@ -341,7 +347,7 @@ impl LagrangianSettings {
         // the largest grain must fit the released lattice's spacing of 1.1 d
         check(f, &p("size_dispersion"), self.size_dispersion, ParamRange::closed(0.0, MAX_SIZE_DISPERSION))?;
         if let Some(n) = self.cells {
-            check(f, &p("cells"), n as f64, ParamRange::closed(2.0, 1_000_000.0))?;
+            check(f, &p("cells"), n as f64, ParamRange::closed(2.0, MAX_FLUID_CELLS as f64))?;
         }
         if let Some(n) = self.particles {
             check(f, &p("particles"), n as f64, ParamRange::closed(1.0, MAX_PARTICLES))?;
@@ -377,7 +383,19 @@ impl LagrangianSettings {
         let length = self.length.ok_or_else(|| need("length", "no default"))?;
         let width = self.width.ok_or_else(|| need("width", "no default"))?;
         if self.initial == Initial::Bed && self.settle_time.is_none() {
-            return Err(need("settle_time", "the default needs grains heavier than the fluid under gravity"));
+            return Err(need(
+                "settle_time",
+                &format!("the default needs grains heavier than the fluid under gravity, and at most {MAX_TIME:e} s"),
+            ));
+        }
+        if self.cells.is_none() {
+            return Err(need(
+                "cells",
+                &format!(
+                    "cells of d/{FLUID_CELLS_PER_DIAMETER} over bed_height + water_depth = {} m are more than {MAX_FLUID_CELLS}",
+                    crate::param::number(c.bed_height + c.water_depth)
+                ),
+            ));
         }
         if self.takes_samples() && self.end_time <= self.stats_start {
             // the averages would hold no sample: refused before the work rather than

@@ -32,7 +32,8 @@ use crate::param::ParamRange;
 pub use closures::{closure_from_value, de_concrete, granular_from_value, Closures, DEFAULT_MODELS};
 pub use domain::{CellSize, Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT, MAX_STRETCH_DECADES};
 pub use lagrangian::{
-    Case, DragVelocity, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, FREY_LEVELS, MAX_PARTICLES, MAX_SIDE_DIAMETERS,
+    Case, DragVelocity, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, FREY_LEVELS, MAX_FLUID_CELLS, MAX_PARTICLES,
+    MAX_SIDE_DIAMETERS,
 };
 pub use overrides::{apply_override, parse_table};
 pub use python::Python;
@@ -40,6 +41,7 @@ pub use solver::{
     default_elastic_phi_rlp, Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver,
     SolverKind, Surface, ELASTIC_PHI_RLP, MAX_TIME,
 };
+use tables::STIFFNESS;
 pub use tables::{
     Contact, ContactModel, Drive, Fluid, Meta, NormalForce, Output, Particles, Physics, Reference, ShieldsWeight,
     MAX_SNAPSHOTS, MAX_TIMESERIES_ROWS, TIMESERIES_ROWS,
@@ -101,8 +103,6 @@ struct Base {
     solver: Solver,
     #[serde(default)]
     output: Output,
-    #[serde(default, deserialize_with = "tables::one_or_many")]
-    reference: Vec<Reference>,
 }
 
 /// Keys that must hold a table. serde reads a struct from an array too (by position), so
@@ -219,7 +219,9 @@ impl Scene {
         }
         let closures_value = table.remove("closures");
         let given = shields::Given::of(&table);
+        let reference_value = table.remove("reference");
         let mut base: Base = de_path(toml::Value::Table(table), file, "")?;
+        let reference = tables::references(reference_value, file)?;
         base.fluid.check(file)?;
         base.particles.check(file)?;
         shields::resolve(&mut base.physics, &mut base.domain, &base.fluid, &base.particles, given, file)?;
@@ -238,7 +240,7 @@ impl Scene {
             solver: base.solver,
             closures,
             output: base.output,
-            reference: base.reference,
+            reference,
             python,
             path: file.to_path_buf(),
         };
@@ -286,8 +288,11 @@ impl Scene {
         if self.particles.contact.stiffness.is_none() {
             let dry = self.solver.lagrangian.fluid == FluidMode::Off;
             let rho_f = if dry { 0.0 } else { self.fluid.density };
-            self.particles.contact.stiffness =
-                self.particles.rigid_stiffness(rho_f, self.physics.gravity, case.bed_phi, case.bed_height);
+            // a default beyond the range of the key is left out, as one that cannot be derived
+            self.particles.contact.stiffness = self
+                .particles
+                .rigid_stiffness(rho_f, self.physics.gravity, case.bed_phi, case.bed_height)
+                .filter(|k| STIFFNESS.contains(*k));
         }
         if self.domain.bed_phi.is_none() {
             self.domain.bed_phi = match self.solver.kind {
@@ -340,9 +345,19 @@ impl Scene {
             _ => self.domain.cells = Some(n),
         }
         if self.solver.kind == SolverKind::Lagrangian && self.solver.lagrangian.cells.is_none() {
+            // at most MAX_CELLS (checked above), below the DEM's own cap
             self.solver.lagrangian.cells = Some(self.domain.cells_of(size, 2));
         }
         Ok(())
+    }
+
+    /// The scene's name in messages, figures and output folders: `meta.name`, else the
+    /// file's stem, else `run`.
+    pub fn label(&self) -> String {
+        if !self.meta.name.is_empty() {
+            return self.meta.name.clone();
+        }
+        self.path.file_stem().map_or_else(|| "run".into(), |x| x.to_string_lossy().into_owned())
     }
 
     /// End time of the active solver's run (s), with its key.
@@ -432,8 +447,7 @@ impl Scene {
                 if self.particles.contact.law == ContactModel::Linear && self.particles.contact.stiffness.is_none() {
                     return Err(key(
                         "particles.contact.stiffness",
-                        "missing, and the rigid-limit default needs grains heavier than the fluid under gravity; give it"
-                            .into(),
+                        format!("missing, and the rigid-limit default needs grains heavier than the fluid under gravity, inside {STIFFNESS}; give it"),
                     ));
                 }
                 // a lid (Fry et al. 2024's Couette bedload) or a symmetry plane bounds the

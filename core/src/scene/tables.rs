@@ -161,6 +161,9 @@ fn default_friction() -> f64 {
 /// k_n = 1e4 N/m of Chassagne 2023 case 1 (9.9e3 before rounding).
 const RIGID_OVERLAP: f64 = 4.0e-4;
 
+/// Range of `particles.contact.stiffness` (N/m).
+pub(super) const STIFFNESS: ParamRange = ParamRange::closed(1e-6, 1e12);
+
 impl Particles {
     /// Default normal stiffness of the linear law (N/m) in the rigid limit: the weight
     /// of the bed column over one grain, P d^2 with P = (rho_p - rho_f) g phi H (rho_f
@@ -184,7 +187,7 @@ impl Particles {
         }
         let c = &self.contact;
         if let Some(k) = c.stiffness {
-            check(f, "particles.contact.stiffness", k, ParamRange::closed(1e-6, 1e12))?;
+            check(f, "particles.contact.stiffness", k, STIFFNESS)?;
         }
         check(f, "particles.contact.tangential_ratio", c.tangential_ratio, ParamRange::closed(0.0, 10.0))?;
         check(f, "particles.contact.young", c.young, ParamRange::closed(1.0, 1e13))?;
@@ -323,6 +326,13 @@ impl Output {
     /// The intervals against the active solver's `end_time` (s), named by `end_key`: each
     /// is a time, and none asks for more rows or files than a run can hold.
     pub(super) fn check(&self, f: &Path, end_time: f64, end_key: &str) -> Result<()> {
+        if self.dir.as_deref().is_some_and(|d| d.trim().is_empty()) {
+            return Err(crate::error::Error::Key {
+                file: f.into(),
+                key: "output.dir".into(),
+                message: "an empty path; give a folder, or leave the key out for out/<meta.name>".into(),
+            });
+        }
         let max = super::MAX_TIME;
         if let Some(t) = self.timeseries_interval {
             check(f, "output.timeseries_interval", t, ParamRange::open_closed(0.0, max))?;
@@ -380,24 +390,25 @@ pub(super) fn is_zero(x: &f64) -> bool {
     *x == 0.0
 }
 
-/// `[reference]` (one table) or `[[reference]]` (an array of tables). Each table is read
-/// on its own so that a mistake is reported with its key and index, not as "no variant
-/// matched".
-pub(super) fn one_or_many<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Vec<Reference>, D::Error> {
-    use serde::de::Error as _;
-    let one = |v: toml::Value, key: String| {
-        Reference::deserialize(v).map_err(|e| D::Error::custom(format!("{key}: {}", e.message())))
-    };
-    match Option::<toml::Value>::deserialize(d)? {
+/// `[reference]` (one table) or `[[reference]]` (an array of tables), the value of key
+/// `reference` of `file`. Each table is read on its own with its full key path
+/// (`reference[1].columns`), so that a mistake is reported where it is, not as "no
+/// variant matched".
+pub(super) fn references(value: Option<toml::Value>, file: &Path) -> Result<Vec<Reference>> {
+    match value {
         None => Ok(Vec::new()),
-        Some(v @ toml::Value::Table(_)) => Ok(vec![one(v, "reference".into())?]),
+        Some(v @ toml::Value::Table(_)) => Ok(vec![super::de_path(v, file, "reference")?]),
         Some(toml::Value::Array(items)) => {
-            items.into_iter().enumerate().map(|(i, v)| one(v, format!("reference[{i}]"))).collect()
+            items.into_iter().enumerate().map(|(i, v)| super::de_path(v, file, &format!("reference[{i}]"))).collect()
         }
-        Some(other) => Err(D::Error::custom(format!(
-            "reference: expected a table ([reference]) or an array of tables ([[reference]]), found {}",
-            other.type_str()
-        ))),
+        Some(other) => Err(crate::error::Error::Key {
+            file: file.into(),
+            key: "reference".into(),
+            message: format!(
+                "expected a table ([reference]) or an array of tables ([[reference]]), found {}",
+                other.type_str()
+            ),
+        }),
     }
 }
 

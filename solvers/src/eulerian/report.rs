@@ -213,10 +213,10 @@ impl Eulerian<'_> {
         };
         let figure = |x: Option<f64>, f: fn(f64) -> String| x.map_or_else(|| "undefined".to_string(), f);
         let text = format!(
-            "{}: {} after {:.3} s simulated ({} steps, {} rejected) in {:.3} s wall time; qs* = {} (qs = {:.4e} m^2/s), Shields {}, {layers}, mass error {:.1e}",
-            scene.meta.name,
+            "{}: {} after {} s simulated ({} steps, {} rejected) in {:.3} s wall time; qs* = {} (qs = {:.4e} m^2/s), Shields {}, {layers}, mass error {:.1e}",
+            scene.label(),
             ending.name(),
-            summary.sim_time_s,
+            saltus_core::param::decimal(summary.sim_time_s),
             summary.steps,
             self.rejected_steps(),
             wall,

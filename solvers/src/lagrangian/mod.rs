@@ -29,4 +29,4 @@ pub use engine::neighbours::NeighbourList;
 pub use engine::particles::{Box3, Particles};
 pub use engine::walls::Wall;
 pub use run::config::{Bottom, Config, Domain, FluidMode, Initial, Settings, Surface};
-pub use run::solver::{Lagrangian, CHECK_STEPS, MAX_SPEED};
+pub use run::solver::{Lagrangian, CHECK_STEPS, MAX_OVERLAP, MAX_SPEED};

@@ -115,13 +115,26 @@ pub fn write(dir: &Path, solver: &str, scene: &str, cadence: &Cadence, state: &[
     std::fs::rename(&tmp, &file).map_err(io(&file))
 }
 
+/// The run folder of a checkpoint given as `--restart` gives it: the folder itself, or
+/// the folder of the checkpoint file (`.` for a file in the current folder).
+pub fn folder(path: &Path) -> PathBuf {
+    if path.is_file() {
+        match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        }
+    } else {
+        path.to_path_buf()
+    }
+}
+
 /// Read the checkpoint of `path`: a folder holding `checkpoint.bin` (the output folder of
 /// the run), or the file itself. Errors name the file and what is wrong with it.
 pub fn read(path: &Path) -> Result<Restart, Error> {
     let (dir, file) = if path.is_dir() {
         (path.to_path_buf(), path.join(FILE))
     } else if path.is_file() {
-        (path.parent().map(Path::to_path_buf).unwrap_or_default(), path.to_path_buf())
+        (folder(path), path.to_path_buf())
     } else {
         return Err(Error::Invalid(format!(
             "--restart {}: no such folder or file (give the output folder of the run to continue, which holds {FILE})",

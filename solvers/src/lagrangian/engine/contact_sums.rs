@@ -83,21 +83,30 @@ impl End {
 }
 
 impl Slices {
-    /// Call `f(c, w)` for every slice c the contact of ends `a` and `b` reaches, w being
-    /// the share of the contact in it:
+    /// Call `f(c, w, u)` for every slice c the contact of ends `a` and `b` reaches, `w`
+    /// and `u` being the two shares of the contact in it:
     ///
     /// ```text
     /// w_c = int_{slice c} [S_a(z) - S_b(z)] dz / (z_b - z_a)
+    /// u_c = int_{slice c} |S_a(z) - S_b(z)| dz / int |S_a(z) - S_b(z)| dz
     /// ```
     ///
     /// with S the fraction of an end below z: the branch from a to b, each end smeared
-    /// over its grain like phi is (Maurin eq A1), so that the contact stress's divergence
-    /// is exactly the contact forces weighted as phi weights them (module
-    /// documentation). The shares add up to 1 over the slices (parts outside the slices
-    /// are dropped); a horizontal branch (|z_b - z_a| below 1e-9 of the radii) takes the
-    /// limit, the mean of the two ends' volume shares.
+    /// over its grain like phi is (Maurin eq A1). `w` is the share of the values that
+    /// carry the branch's rise z_b - z_a (P_zz, P_xz, P_yz, the heat flux): with it the
+    /// contact stress's divergence is exactly the contact forces weighted as phi weights
+    /// them (module documentation of the granular fields), the rise cancelling the
+    /// division. `u` is the share of the others (P_xx, P_yy, the dissipation, the count),
+    /// which must not change sign: S_a - S_b does when one end reaches both above and
+    /// below the other (grains of different sizes on a branch steeper than the difference
+    /// of their radii, or a grain overlapping a wall point), and `w` then takes negative
+    /// values and, for a branch almost level, values far above 1. Both add up to 1 over
+    /// the slices (parts outside the slices are dropped), and they are equal where S_a -
+    /// S_b keeps its sign (any two grains of one size). A horizontal branch (|z_b - z_a|
+    /// below 1e-9 of the radii) takes the limit, the mean of the two ends' volume shares,
+    /// for both.
     #[inline]
-    pub fn branch(&self, a: End, b: End, mut f: impl FnMut(usize, f64)) {
+    pub fn branch(&self, a: End, b: End, mut f: impl FnMut(usize, f64, f64)) {
         let (dz, base) = (self.dz, self.base);
         if !(a.z.is_finite() && b.z.is_finite()) {
             return;
@@ -115,19 +124,66 @@ impl Slices {
         if rise.abs() <= 1e-9 * (a.r + b.r) {
             for c in first..=last {
                 let (h0, h1) = (face(c), face(c + 1));
-                f(c, 0.5 * (a.share(h0, h1) + b.share(h0, h1)));
+                let w = 0.5 * (a.share(h0, h1) + b.share(h0, h1));
+                f(c, w, w);
             }
             return;
         }
-        let mut below = a.below(face(first)) - b.below(face(first));
+        let gap = |h: f64| a.below(h) - b.below(h);
+        let mut below = gap(face(first));
+        let Some((cross, at, total)) = sign_change(a, b, rise).map(|(z, t)| (z, gap(z), t)) else {
+            for c in first..=last {
+                let upto = gap(face(c + 1));
+                let w = (upto - below) / rise;
+                f(c, w, w);
+                below = upto;
+            }
+            return;
+        };
         for c in first..=last {
-            let h1 = face(c + 1);
-            let upto = a.below(h1) - b.below(h1);
-            f(c, (upto - below) / rise);
+            let (h0, h1) = (face(c), face(c + 1));
+            let upto = gap(h1);
+            let w = (upto - below) / rise;
+            let u = if cross > h0 && cross < h1 {
+                ((at - below).abs() + (upto - at).abs()) / total
+            } else {
+                (upto - below).abs() / total
+            };
+            f(c, w, u);
             below = upto;
         }
     }
 }
+
+/// Where S_a - S_b changes sign on a branch of rise `rise` (not level), with the integral
+/// of |S_a - S_b| over z; `None` when it keeps its sign. Each S is the fraction of a
+/// ball-shaped (or point) distribution below z, F((z - z_e) / r_e) with one F: S_a - S_b
+/// changes sign where (z - z_a) / r_a = (z - z_b) / r_b inside both ends, which happens
+/// iff one end reaches past the other on both sides, |r_a - r_b| > |z_b - z_a|. The
+/// integral of S_a - S_b over all z is the rise, so the integral of its absolute value is
+/// |G(z*)| + |rise - G(z*)| with G(h) its integral below h.
+#[inline]
+fn sign_change(a: End, b: End, rise: f64) -> Option<(f64, f64)> {
+    if (a.r - b.r).abs() <= rise.abs() {
+        return None;
+    }
+    let z = (a.z * b.r - b.z * a.r) / (b.r - a.r);
+    let z = z.clamp((a.z - a.r).max(b.z - b.r), (a.z + a.r).min(b.z + b.r));
+    let g = a.below(z) - b.below(z);
+    let total = g.abs() + (rise - g).abs();
+    (total > 0.0 && total.is_finite()).then_some((z, total))
+}
+
+/// Which of the [`CONTACT_FIELDS`] carry the branch's rise, and so take the share `w` of
+/// [`Slices::branch`]; the others take `u`.
+const CARRIES_RISE: [bool; CONTACT_FIELDS] = {
+    let mut r = [false; CONTACT_FIELDS];
+    r[PZZ] = true;
+    r[PXZ] = true;
+    r[PYZ] = true;
+    r[HEAT] = true;
+    r
+};
 
 /// The values one contact adds to its slices: `b` the branch vector from particle a to
 /// its partner, `f` the force on a, `va`/`vb` the translational velocities, `power` the
@@ -146,13 +202,14 @@ pub fn contact_values(
 }
 
 /// Add `values` of the contact of ends `a` and `b` into `slab` (slice-major,
-/// [`CONTACT_FIELDS`] per slice), divided as [`Slices::branch`] divides it.
+/// [`CONTACT_FIELDS`] per slice), divided as [`Slices::branch`] divides it: the fields
+/// that carry the branch's rise by `w`, the others by `u`.
 #[inline(always)]
 pub fn spread(slices: &Slices, slab: &mut [f64], a: End, b: End, values: &[f64; CONTACT_FIELDS]) {
-    slices.branch(a, b, |c, w| {
+    slices.branch(a, b, |c, w, u| {
         let row = &mut slab[c * CONTACT_FIELDS..(c + 1) * CONTACT_FIELDS];
-        for (r, v) in row.iter_mut().zip(values) {
-            *r += w * v;
+        for ((r, v), &rise) in row.iter_mut().zip(values).zip(&CARRIES_RISE) {
+            *r += (if rise { w } else { u }) * v;
         }
     });
 }

@@ -140,17 +140,23 @@ impl HalfCylinders {
     /// Elastic energy of the normal springs of the linear law between the cylinders and
     /// sphere (centre `x`, radius `r`) (J).
     pub fn normal_spring_energy(&self, x: [f64; 3], r: f64, kn: f64) -> f64 {
+        let mut e = 0.0;
+        self.each_overlap(x, r, |delta| e += 0.5 * kn * delta * delta);
+        e
+    }
+
+    /// Call `f(delta)` for every half-cylinder that the sphere of centre `x` and radius
+    /// `r` overlaps, delta > 0 the overlap (m).
+    pub fn each_overlap(&self, x: [f64; 3], r: f64, mut f: impl FnMut(f64)) {
         let period = self.period();
         let xs = x[0].rem_euclid(period);
         let reach = r + self.radius;
-        let mut e = 0.0;
         for (k, &z) in self.z.iter().enumerate() {
             let dx = ((k as f64 + 0.5) * self.spacing - xs + 0.5 * period).rem_euclid(period) - 0.5 * period;
             let delta = reach - (dx * dx + (z - x[2]) * (z - x[2])).sqrt();
             if delta > 0.0 {
-                e += 0.5 * kn * delta * delta;
+                f(delta);
             }
         }
-        e
     }
 }

@@ -430,16 +430,39 @@ impl Dem {
     /// Elastic energy stored in the normal springs of the linear law (J), for energy
     /// checks: sum over contacts of k_n delta^2 / 2 (walls included).
     pub fn normal_spring_energy(&self) -> f64 {
+        let mut e = 0.0;
+        self.each_overlap(|_, delta, _| e += 0.5 * self.law.kn * delta * delta);
+        e
+    }
+
+    /// The deepest overlap over the diameter of the smaller grain of its contact (walls
+    /// and half-cylinders included), with a mobile particle of that contact; `None`
+    /// without contacts.
+    pub fn deepest_overlap(&self) -> Option<(usize, f64)> {
+        let mut deepest: Option<(usize, f64)> = None;
+        self.each_overlap(|a, delta, d| {
+            let f = delta / d;
+            if !matches!(deepest, Some((_, g)) if g >= f) {
+                deepest = Some((a, f));
+            }
+        });
+        deepest
+    }
+
+    /// Call `f(a, delta, d)` for every contact in overlap delta > 0 (m): the pairs of the
+    /// neighbour list, then each mobile particle's walls and half-cylinders; a is a mobile
+    /// particle of the contact and d the smaller diameter of its grains.
+    fn each_overlap(&self, mut f: impl FnMut(usize, f64, f64)) {
         let p = &self.p;
         let l = &self.list;
-        let mut e = 0.0;
         for q in 0..l.len() {
             let (a, b) = (l.i[q] as usize, l.j[q] as usize);
             let s = l.shift[q];
             let d = [p.x[b] + s[0] - p.x[a], p.y[b] + s[1] - p.y[a], p.z[b] + s[2] - p.z[a]];
             let delta = p.radius[a] + p.radius[b] - (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
             if delta > 0.0 {
-                e += 0.5 * self.law.kn * delta * delta;
+                let mobile = if a < p.n_mobile { a } else { b };
+                f(mobile, delta, 2.0 * p.radius[a].min(p.radius[b]));
             }
         }
         for a in 0..p.n_mobile {
@@ -447,14 +470,13 @@ impl Dem {
             for wall in &self.walls {
                 let delta = p.radius[a] - (pos[wall.axis] - wall.position) * wall.sign;
                 if delta > 0.0 {
-                    e += 0.5 * self.law.kn * delta * delta;
+                    f(a, delta, 2.0 * p.radius[a]);
                 }
             }
             if let Some(c) = &self.cylinders {
-                e += c.normal_spring_energy(pos, p.radius[a], self.law.kn);
+                c.each_overlap(pos, p.radius[a], |delta| f(a, delta, 2.0 * p.radius[a].min(c.radius)));
             }
         }
-        e
     }
 
     /// First mobile particle whose position or velocity is not finite, with the field.

@@ -173,10 +173,10 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
         .map(|c| cooling_sentence(c, haff, m.time(), summary.granular_temperature.unwrap_or(0.0)))
         .unwrap_or_default();
     let text = format!(
-        "{}: {} after {:.3} s of flow ({} DEM steps of {:.3e} s after {} of deposition, {} in all, {} neighbour-list builds, {} mobile particles, {samples} averaging samples) in {:.1} s wall time ({:.2e} particle-steps/s); {measured}; {steady}{temperature}",
-        scene.meta.name,
+        "{}: {} after {} s of flow ({} DEM steps of {:.3e} s after {} of deposition, {} in all, {} neighbour-list builds, {} mobile particles, {samples} averaging samples) in {:.1} s wall time ({:.2e} particle-steps/s); {measured}; {steady}{temperature}",
+        scene.label(),
         ending.name(),
-        summary.sim_time_s,
+        saltus_core::param::decimal(summary.sim_time_s),
         summary.steps,
         m.dt(),
         m.settle_steps(),

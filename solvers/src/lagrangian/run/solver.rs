@@ -26,6 +26,13 @@ use saltus_core::grain::{carnahan_starling, sphere_volume};
 /// stiffness.
 pub const MAX_SPEED: f64 = 100.0;
 
+/// Overlap of a contact over the smaller diameter beyond which the run is declared
+/// unstable: grains passing through each other. The rigid-limit stiffness keeps overlaps
+/// near 4e-4 d under the weight of the bed, and collisions at the default time step stay
+/// within a few per cent of d; past a quarter of a diameter a soft-sphere contact models
+/// nothing (and the packing of the slices heads for values above 1).
+pub const MAX_OVERLAP: f64 = 0.25;
+
 /// Most DEM steps a scene may ask for (deposition and flow): the top of the range of
 /// `solver.lagrangian.max_steps`.
 pub const MAX_DEM_STEPS: f64 = 1e15;

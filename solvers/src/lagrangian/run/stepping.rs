@@ -6,10 +6,10 @@
 use std::borrow::Cow;
 use std::time::Instant;
 
-use saltus_core::scene::DragVelocity;
+use saltus_core::scene::{ContactModel, DragVelocity};
 
 use super::config::FluidMode;
-use super::solver::{Lagrangian, CHECK_STEPS, MAX_SPEED};
+use super::solver::{Lagrangian, CHECK_STEPS, MAX_OVERLAP, MAX_SPEED};
 use super::stage;
 use super::state::{Stage, State};
 use crate::column::{Closures, Coupling};
@@ -87,7 +87,8 @@ impl Lagrangian<'_> {
         self.work.stages.lap(stage::AVERAGING, t0);
     }
 
-    /// First non-finite or runaway particle.
+    /// First non-finite or runaway particle, then grains that pass through each other
+    /// (an overlap beyond [`MAX_OVERLAP`] of a diameter).
     pub(crate) fn check(&self) -> Result<(), Breakdown> {
         let time = self.state.phase_time();
         if let Some((a, field, value)) = self.state.dem.first_non_finite() {
@@ -112,7 +113,34 @@ impl Lagrangian<'_> {
                 });
             }
         }
+        if let Some((a, overlap)) = self.state.dem.deepest_overlap().filter(|&(_, o)| o > MAX_OVERLAP) {
+            return Err(Breakdown {
+                time,
+                place: Place::Particle { index: a },
+                field: Cow::Borrowed("overlap / d"),
+                value: overlap,
+                reason: self.overlap_cause(p.z[a]),
+            });
+        }
         Ok(())
+    }
+
+    /// Why grains overlap by more than [`MAX_OVERLAP`] of a diameter, with the keys that
+    /// set the contact's stiffness and the time step.
+    fn overlap_cause(&self, z: f64) -> String {
+        let s = &self.params.cfg.settings;
+        let stiffness = match s.contact {
+            ContactModel::Linear => {
+                format!("particles.contact.stiffness = {} N/m", saltus_core::param::number(s.stiffness))
+            }
+            ContactModel::Hertz => format!("particles.contact.young = {} Pa", saltus_core::param::number(s.young)),
+        };
+        format!(
+            "grains overlap by more than {MAX_OVERLAP} of a diameter at z = {} m, where a soft-sphere contact no longer holds: the contact is too soft for the load ({stiffness}; raise it, or leave particles.contact.stiffness out for the rigid-limit default of the linear law) or the time step {} s lets collisions run through (lower solver.lagrangian.dt_safety = {})",
+            saltus_core::param::decimal(z),
+            saltus_core::param::number(self.state.dem.dt()),
+            saltus_core::param::number(s.numerics.dt_safety)
+        )
     }
 
     /// Why a particle at height z outran [`MAX_SPEED`]: carried there by the fluid (a

@@ -16,12 +16,15 @@
 //! * Particle terms carry the exact volume share V_pc of sphere p in slice c, like phi
 //!   (kinetic stress, heat flux) or the share V_pc / V_p (drag, particle count).
 //! * Contact terms (stress, heat flux, dissipation, contact count) are divided between
-//!   the slices that the contact's branch vector crosses, in proportion to the length of
-//!   the branch inside each slice (its z-extent inside over its whole z-extent; a
-//!   horizontal branch goes whole to its slice). The branch vector runs centre to centre,
-//!   also to a fixed particle; for a flat wall it runs from the centre to the wall plane.
-//!   A branch that crosses a whole slice thus adds to it exactly the force transmitted
-//!   across the slice over A, which makes the momentum balance hold slice by slice.
+//!   the slices that the contact's branch vector reaches, each end smeared over its
+//!   grain like phi ([`Slices::branch`]). The branch vector runs centre to centre, also
+//!   to a fixed particle; for a flat wall it runs from the centre to the wall plane. The
+//!   terms that carry the branch's rise (P_zz, P_xz, P_yz, heat flux) take the signed
+//!   share whose divergence is the contact force as phi weights it, which makes the
+//!   momentum balance hold slice by slice; the others (P_xx, P_yy, dissipation, count)
+//!   take a share that is never negative, the same one wherever the signed share is
+//!   not negative (two grains of one size), so that a count or a dissipation is never
+//!   below zero in a slice where grains of two sizes touch.
 //!
 //! # Definitions and sign conventions
 //!
@@ -371,19 +374,111 @@ mod tests {
         let s = Slices { base: 1.0, dz: 0.5, n: 2 };
         let mut got = Vec::new();
         // horizontal: the mean of the two grains' volume shares
-        s.branch(End { z: 1.5, r: 0.25 }, End { z: 1.5, r: 0.25 }, |c, w| got.push((c, w)));
+        s.branch(End { z: 1.5, r: 0.25 }, End { z: 1.5, r: 0.25 }, |c, w, u| got.push((c, w, u)));
         assert_eq!(got.len(), 2);
-        assert!((got[0].1 - 0.5).abs() < 1e-12 && (got[1].1 - 0.5).abs() < 1e-12, "{got:?}");
+        assert!(got.iter().all(|g| (g.1 - 0.5).abs() < 1e-12 && g.2 == g.1), "{got:?}");
         got.clear();
         // a grain on a wall at the base: all of the contact is inside the slices
-        s.branch(End { z: 1.2, r: 0.2 }, End { z: 1.0, r: 0.0 }, |c, w| got.push((c, w)));
+        s.branch(End { z: 1.2, r: 0.2 }, End { z: 1.0, r: 0.0 }, |c, w, u| got.push((c, w, u)));
         assert!((got.iter().map(|g| g.1).sum::<f64>() - 1.0).abs() < 1e-12, "{got:?}");
-        assert!(got.iter().all(|g| g.1 >= 0.0));
+        assert!((got.iter().map(|g| g.2).sum::<f64>() - 1.0).abs() < 1e-12, "{got:?}");
+        assert!(got.iter().all(|g| g.1 >= 0.0 && g.2 >= 0.0));
         got.clear();
         // out of the slices, or not a number: nothing
-        s.branch(End { z: 0.2, r: 0.1 }, End { z: 0.5, r: 0.1 }, |c, w| got.push((c, w)));
-        s.branch(End { z: 2.5, r: 0.1 }, End { z: 2.8, r: 0.1 }, |c, w| got.push((c, w)));
-        s.branch(End { z: f64::NAN, r: 0.1 }, End { z: 1.2, r: 0.1 }, |c, w| got.push((c, w)));
+        s.branch(End { z: 0.2, r: 0.1 }, End { z: 0.5, r: 0.1 }, |c, w, u| got.push((c, w, u)));
+        s.branch(End { z: 2.5, r: 0.1 }, End { z: 2.8, r: 0.1 }, |c, w, u| got.push((c, w, u)));
+        s.branch(End { z: f64::NAN, r: 0.1 }, End { z: 1.2, r: 0.1 }, |c, w, u| got.push((c, w, u)));
         assert!(got.is_empty(), "{got:?}");
+    }
+
+    /// int over [h0, h1] of |S_a - S_b| by Simpson's rule on the cap volumes (the
+    /// absolute value makes it converge slowly where S_a - S_b changes sign, hence the
+    /// many points).
+    fn quadrature_abs(a: End, b: End, h0: f64, h1: f64) -> f64 {
+        let frac = |e: End, h: f64| cap_volume(e.z, e.r, h) / ball_volume(e.r);
+        let g = |h: f64| (frac(a, h) - frac(b, h)).abs();
+        let n = 200_000;
+        let step = (h1 - h0) / n as f64;
+        let sum: f64 = (0..=n)
+            .map(|k| {
+                let w = if k == 0 || k == n {
+                    1.0
+                } else if k % 2 == 1 {
+                    4.0
+                } else {
+                    2.0
+                };
+                w * g(h0 + k as f64 * step)
+            })
+            .sum();
+        sum * step / 3.0
+    }
+
+    #[test]
+    fn grains_of_two_sizes_on_a_nearly_level_branch_add_no_negative_count() {
+        // a bigger grain (r = 0.54 mm) beside a smaller one (0.46 mm) 1 um higher, as a
+        // size dispersion of 8 % gives: S_a - S_b is positive below the centres and
+        // negative above, and its integral over a slice of 0.1 mm divided by the 1 um rise
+        // reaches -4 and +4. The count, P_xx, P_yy and the dissipation take the share
+        // |S_a - S_b| / int |S_a - S_b| (checked against quadrature): none negative,
+        // adding up to the contact; the fields carrying the rise keep the exact signed
+        // split, whose product with the rise is bounded
+        let slices = Slices { base: 0.0, dz: 0.1e-3, n: 40 };
+        let (a, b) = (End { z: 2.0e-3, r: 0.54e-3 }, End { z: 2.001e-3, r: 0.46e-3 });
+        let mut got = Vec::new();
+        slices.branch(a, b, |c, w, u| got.push((c, w, u)));
+        assert!(got.iter().any(|g| g.1 < -1.0), "the signed share changes sign: {got:?}");
+        let total = quadrature_abs(a, b, 1.4e-3, 2.6e-3);
+        for &(c, _, u) in &got {
+            let h0 = c as f64 * slices.dz;
+            let want = quadrature_abs(a, b, h0, h0 + slices.dz) / total;
+            assert!(u >= 0.0 && (u - want).abs() < 1e-6, "slice {c}: {u} vs {want}");
+        }
+        assert!((got.iter().map(|g| g.2).sum::<f64>() - 1.0).abs() < 1e-12);
+        assert!((got.iter().map(|g| g.1).sum::<f64>() - 1.0).abs() < 1e-9);
+        let branch = [1.0e-3, 0.0, 1.0e-6];
+        let vals = contact_values(branch, [-0.5, 0.0, 0.01], [0.1, 0.0, 0.0], [0.2, 0.0, 0.0], 0.3, 1.0);
+        let mut slab = vec![0.0; slices.n * CONTACT_FIELDS];
+        spread(&slices, &mut slab, a, b, &vals);
+        for row in slab.chunks_exact(CONTACT_FIELDS) {
+            assert!(row[COUNT] >= 0.0 && row[DISS] >= 0.0 && row[PXX] >= 0.0, "{row:?}");
+            // w times the rise is the integral of S_a - S_b over the slice: at most dz
+            assert!(row[PZZ].abs() <= 0.01 * slices.dz && row[PXZ].abs() <= 0.5 * slices.dz, "{row:?}");
+        }
+        for k in 0..CONTACT_FIELDS {
+            let sum: f64 = slab.chunks_exact(CONTACT_FIELDS).map(|r| r[k]).sum();
+            assert!((sum - vals[k]).abs() <= 1e-9 * vals[k].abs(), "field {k}: {sum} vs {}", vals[k]);
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::test_runner::Config::with_cases(256))]
+
+        /// Any contact of two grains of radii 0.3 to 0.7, or of a grain and a point inside
+        /// it (a wall overlapped), on slices that hold all of it: the share u is never
+        /// negative and both shares add up to 1; they are the same share where one grain
+        /// does not reach past the other on both sides.
+        #[test]
+        fn the_shares_of_a_contact_add_up_to_one_and_u_is_never_negative(
+            ra in 0.3f64..0.7,
+            rb in 0.3f64..0.7,
+            point in proptest::bool::ANY,
+            t in -1.0f64..1.0,
+            za in 2.0f64..3.0,
+            dz in 0.02f64..1.0,
+        ) {
+            let rb = if point { 0.0 } else { rb };
+            let b = End { z: za + t * (ra + rb), r: rb };
+            let a = End { z: za, r: ra };
+            let slices = Slices { base: 0.0, dz, n: (6.0 / dz).ceil() as usize };
+            let mut got = Vec::new();
+            slices.branch(a, b, |c, w, u| got.push((c, w, u)));
+            let (sw, su): (f64, f64) = got.iter().fold((0.0, 0.0), |(x, y), g| (x + g.1, y + g.2));
+            proptest::prop_assert!((sw - 1.0).abs() < 1e-9 && (su - 1.0).abs() < 1e-9, "{sw} {su} {got:?}");
+            proptest::prop_assert!(got.iter().all(|g| g.2 >= 0.0), "{got:?}");
+            if (ra - rb).abs() <= (b.z - a.z).abs() {
+                proptest::prop_assert!(got.iter().all(|g| g.1 == g.2), "{got:?}");
+            }
+        }
     }
 }
