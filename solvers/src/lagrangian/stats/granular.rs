@@ -315,7 +315,11 @@ mod tests {
     fn quadrature(a: End, b: End, h0: f64, h1: f64) -> f64 {
         let frac = |e: End, h: f64| cap_volume(e.z, e.r, h) / ball_volume(e.r);
         let g = |h: f64| frac(a, h) - frac(b, h);
-        let n = 20_000;
+        simpson(g, h0, h1, 20_000) / (b.z - a.z)
+    }
+
+    /// int over [h0, h1] of g by Simpson's rule on `n` (even) intervals.
+    fn simpson(g: impl Fn(f64) -> f64, h0: f64, h1: f64, n: usize) -> f64 {
         let step = (h1 - h0) / n as f64;
         let sum: f64 = (0..=n)
             .map(|k| {
@@ -329,7 +333,7 @@ mod tests {
                 w * g(h0 + k as f64 * step)
             })
             .sum();
-        sum * step / 3.0 / (b.z - a.z)
+        sum * step / 3.0
     }
 
     #[test]
@@ -397,21 +401,7 @@ mod tests {
     fn quadrature_abs(a: End, b: End, h0: f64, h1: f64) -> f64 {
         let frac = |e: End, h: f64| cap_volume(e.z, e.r, h) / ball_volume(e.r);
         let g = |h: f64| (frac(a, h) - frac(b, h)).abs();
-        let n = 200_000;
-        let step = (h1 - h0) / n as f64;
-        let sum: f64 = (0..=n)
-            .map(|k| {
-                let w = if k == 0 || k == n {
-                    1.0
-                } else if k % 2 == 1 {
-                    4.0
-                } else {
-                    2.0
-                };
-                w * g(h0 + k as f64 * step)
-            })
-            .sum();
-        sum * step / 3.0
+        simpson(g, h0, h1, 200_000)
     }
 
     #[test]
