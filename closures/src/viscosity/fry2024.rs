@@ -6,10 +6,19 @@ use serde::{Deserialize, Serialize};
 
 /// Fry, Lacaze et al. (2024) apparent viscosity of the equivalent fluid phase in bedload
 ///
-/// nu_eff / nu_f = (1 - phi)^(-beta),  beta = beta0 + a (r theta sqrt(Re_p))^(2/3)
+/// ```text
+/// eta_eq / eta_f = (1 - phi)^(-beta),  beta = beta0 + a (r theta sqrt(Re_p))^(2/3)
+/// nu_eff / nu_f  = (1 - phi)^(-beta - 1)
+/// ```
 ///
 /// * Source: Fry et al. 2024 eq 32 with the first form of eq 51 (fit of their IBM-DEM
 ///   Couette bedload simulations, figure 8).
+/// * Why the extra power of (1 - phi): Fry's apparent viscosity is defined on the phase
+///   stress, eta_eq = Sigma^f / gamma_dot (eq 50), and Sigma^f = eps <sigma>^f + n <s^f>^p
+///   - Reynolds (eq 21) already carries the fluid fraction eps = 1 - phi. The fluid-phase
+///   stress of this library's solvers is eps rho_f nu_eff du_f/dz (the trait's ratio
+///   multiplies nu_f inside eps), so nu_eff = eta_eq / (rho_f eps): the fluid-phase stress
+///   is then exactly eta_f (1 - phi)^(-beta) gamma_dot, eq 50 with eq 32.
 /// * Defaults: `beta0 = 0.565`, `a = 0.85` (eq 51), and the flow's dimensionless numbers
 ///   `shields` theta = 0.67, `re_p` = 1 (Re_p = rho_f Gamma d^2 / eta_f with Gamma the
 ///   Couette shear rate far above the bed, *not* a slip Reynolds number), `density_ratio`
@@ -19,16 +28,20 @@ use serde::{Deserialize, Serialize};
 ///   (0, 1000], `density_ratio` in (1, 20]. The fit itself is only supported for
 ///   0.1 <= Re_p <= 10, 0.1 <= theta <= 0.7 and r = 2.5 (the paper warns it is not expected
 ///   to hold at large Re_p and theta); outside that the law is an extrapolation.
-/// * Small-phi limit (eq 52): 1 + beta phi = 1 + phi [beta0 + a (r theta sqrt(Re_p))^(2/3)],
-///   *not* Einstein's 1 + 5/2 phi (beta0 = 0.565 is "quite smaller than 2.5").
+/// * Small-phi limit (eq 52): eta_eq / eta_f = 1 + beta phi = 1 + phi [beta0 + a (r theta
+///   sqrt(Re_p))^(2/3)], *not* Einstein's 1 + 5/2 phi (beta0 = 0.565 is "quite smaller than
+///   2.5"); nu_eff / nu_f = 1 + (beta + 1) phi.
 /// * The flow numbers are scene parameters, not local fields: beta is constant over the
 ///   domain, as in the paper's fits. `phi_limit` = 1.
+/// * In the DEM's unresolved column the exchange of each grain's drag, slice by slice,
+///   already carries a stress across the grains (Fry's n <s^f>^p); the Couette case there
+///   takes `clear_fluid` (docs/validation.md, Fry et al. 2024).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
 #[describe(
     name = "fry2024",
     source = "Fry et al. 2024 eqs 32, 51 (first form), 52",
-    equation = "nu_eff / nu_f = (1 - phi)^(-beta), beta = beta0 + a (r theta sqrt(Re_p))^(2/3)",
+    equation = "nu_eff / nu_f = (1 - phi)^(-beta - 1): eps nu_eff / nu_f = (1 - phi)^(-beta), beta = beta0 + a (r theta sqrt(Re_p))^(2/3)",
     limits = [Limit::Dilute, Limit::Increasing]
 )]
 pub struct Fry2024 {
@@ -63,10 +76,10 @@ impl Fry2024 {
     }
 }
 
-/// (1 - phi)^(-beta), shared by the scalar and the batch path so that both agree bitwise.
+/// (1 - phi)^(-beta - 1), shared by the scalar and the batch path so that both agree bitwise.
 #[inline]
 fn power_law(phi: f64, beta: f64) -> f64 {
-    (1.0 - phi).powf(-beta)
+    (1.0 - phi).powf(-beta - 1.0)
 }
 
 #[typetag::serde(name = "fry2024")]
@@ -105,15 +118,20 @@ mod tests {
     }
 
     #[test]
-    fn small_phi_slope_is_beta_not_einstein() {
+    fn phase_stress_slope_is_beta_not_einstein() {
+        // the phase stress eps nu_eff / nu_f is Fry's eta_eq / eta_f (eqs 32, 50, 52)
         let v = Fry2024::default();
         let beta = v.beta();
+        let eta_eq = |phi: f64| (1.0 - phi) * v.ratio(phi);
         assert_eq!(v.ratio(0.0), 1.0);
         for h in [1e-4, 1e-6, 1e-8] {
-            assert_relative_eq!((v.ratio(h) - 1.0) / h, beta, max_relative = 1e-3);
+            assert_relative_eq!((eta_eq(h) - 1.0) / h, beta, max_relative = 1e-3);
+            assert_relative_eq!((v.ratio(h) - 1.0) / h, beta + 1.0, max_relative = 1e-3);
         }
         assert!((beta - 2.5).abs() > 0.5);
-        assert_relative_eq!(v.ratio(0.3), 0.7f64.powf(-beta), max_relative = 1e-15);
+        assert_relative_eq!(eta_eq(0.3), 0.7f64.powf(-beta), max_relative = 1e-14);
+        // the paper's direct fit of the reference case: eta_eq / eta_f = 0.5^-1.71 at phi = 0.5
+        assert_relative_eq!(eta_eq(0.5), 0.5f64.powf(-1.71), max_relative = 0.04);
     }
 
     #[test]
