@@ -13,6 +13,9 @@
 //! [[variant]]
 //! name = "as is"
 //! set = []
+//! [reference]                     # optional: work against precision (crate::precision)
+//! variant = "as is"               # or data = true (the base scene's reference data)
+//! # qs_star = 2.44                # and/or a published qs*, with qs_star_stderr
 //! ```
 
 use std::collections::HashSet;
@@ -29,6 +32,7 @@ use serde::Deserialize;
 
 use crate::differences;
 use crate::plot::{self, Reference, COMPARE_PANELS};
+use crate::precision::{self, ReferenceSpec};
 use crate::runner;
 
 /// File names written in the output folder, next to one folder per variant.
@@ -59,6 +63,8 @@ struct RawFile {
     meta: Meta,
     #[serde(default, rename = "variant")]
     variants: Vec<Variant>,
+    #[serde(default)]
+    reference: Option<ReferenceSpec>,
 }
 
 /// One variant: the base scene with overrides.
@@ -85,6 +91,8 @@ pub struct Comparison {
     pub variants: Vec<Variant>,
     /// `KEY=VALUE` overrides of the command line, applied to every variant before its own
     pub set: Vec<String>,
+    /// what the variants' errors are measured against, for the work-precision table
+    pub reference: Option<ReferenceSpec>,
 }
 
 /// Lower-case letters and digits of `name`, other runs of characters replaced by `-`.
@@ -133,6 +141,9 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Comparison> {
             ));
         }
     }
+    if let Some(r) = &raw.reference {
+        check_reference(path, r, &raw.variants)?;
+    }
     let base = path.parent().unwrap_or(Path::new("")).join(&raw.base);
     if !base.is_file() {
         return Err(key_error(path, "base", format!("`{}`: no such scene file ({})", raw.base, base.display())));
@@ -143,7 +154,46 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Comparison> {
     if meta.name.is_empty() {
         meta.name = path.file_stem().map_or_else(|| "comparison".into(), |s| s.to_string_lossy().into_owned());
     }
-    Ok(Comparison { file: path.to_path_buf(), base, meta, variants: raw.variants, set: set.to_vec() })
+    Ok(Comparison {
+        file: path.to_path_buf(),
+        base,
+        meta,
+        variants: raw.variants,
+        set: set.to_vec(),
+        reference: raw.reference,
+    })
+}
+
+/// A `[reference]` names a variant of the file, or the data, or a finite positive qs*.
+fn check_reference(path: &Path, r: &ReferenceSpec, variants: &[Variant]) -> anyhow::Result<()> {
+    if let Some(v) = &r.variant {
+        if !variants.iter().any(|w| &w.name == v) {
+            let names: Vec<&str> = variants.iter().map(|w| w.name.as_str()).collect();
+            return Err(key_error(path, "reference.variant", format!("`{v}` is not a variant; one of {names:?}")));
+        }
+        if r.data || r.qs_star.is_some() {
+            return Err(key_error(
+                path,
+                "reference",
+                "either a variant, or the data and/or a published qs_star, not both",
+            ));
+        }
+    } else if !r.data && r.qs_star.is_none() {
+        return Err(key_error(path, "reference", "give variant = \"<name>\", data = true or qs_star = <value>"));
+    }
+    for (key, v) in [("qs_star", r.qs_star), ("qs_star_stderr", r.qs_star_stderr)] {
+        if let Some(v) = v.filter(|v| !(v.is_finite() && *v >= 0.0 && (key != "qs_star" || *v > 0.0))) {
+            return Err(key_error(
+                path,
+                format!("reference.{key}"),
+                format!("{v}: a finite number > 0 (>= 0 for an error)"),
+            ));
+        }
+    }
+    if r.qs_star_stderr.is_some() && r.qs_star.is_none() {
+        return Err(key_error(path, "reference.qs_star_stderr", "an error of a qs_star the table does not give"));
+    }
+    Ok(())
 }
 
 /// Output folder when `--out` is not given: `out/<meta.name>`.
@@ -187,6 +237,12 @@ pub struct CompareReport {
     /// per variant, the bed-aligned metric ([`differences::ALIGNED`] columns, after the `rms_`
     /// ones); empty when the reference data have no `phi` column
     pub aligned: Vec<[Option<f64>; 4]>,
+    /// per variant, its errors against the `[reference]` and its cost; empty without one
+    pub precision: Vec<precision::Row>,
+    /// `precision.csv`, with a `[reference]`
+    pub precision_table: Option<PathBuf>,
+    /// `precision.png`, with a `[reference]` and a row to draw
+    pub precision_figure: Option<PathBuf>,
 }
 
 impl CompareReport {
@@ -363,7 +419,29 @@ pub fn run(cmp: &Comparison, out: &Path, progress: bool) -> anyhow::Result<Compa
         compared,
         rms,
         aligned,
+        precision: Vec::new(),
+        precision_table: None,
+        precision_figure: None,
     };
+    if let Some(spec) = &cmp.reference {
+        let runs: Vec<(&str, Option<&RunReport>)> =
+            report.runs.iter().map(|r| (r.name.as_str(), r.report.as_ref())).collect();
+        if spec.data && tables.is_empty() {
+            report
+                .warnings
+                .push(format!("{}: reference.data: the base scene has no reference data", cmp.file.display()));
+        }
+        report.precision = precision::rows(spec, &runs, &tables);
+        report.precision_table = Some(precision::write(&report.precision, out)?);
+        let png = out.join(precision::FIGURE);
+        match precision::draw(&format!("{}: work against precision", cmp.meta.name), &report.precision, &png) {
+            Ok(true) => report.precision_figure = Some(png),
+            Ok(false) => {
+                report.warnings.push(format!("{}: no variant with a cost and an error to draw", png.display()))
+            }
+            Err(e) => report.warnings.push(format!("{}: cannot draw: {e:#}", png.display())),
+        }
+    }
 
     let (header, rows) = report.rows(true);
     let mut w =

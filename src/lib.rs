@@ -43,6 +43,7 @@ pub mod differences;
 pub mod eval;
 pub mod listing;
 pub mod plot;
+pub mod precision;
 pub mod runner;
 pub mod sweep;
 pub mod table;

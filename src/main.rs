@@ -333,10 +333,20 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 saltus::errln!("warning: {w}");
             }
             out!("{}", report.text_table());
+            if !report.precision.is_empty() {
+                outln!("work against precision:");
+                out!("{}", saltus::precision::text(&report.precision));
+            }
             outln!("outputs: {}", out.display());
             outln!("table:   {}", report.table.display());
             if let Some(png) = &report.figure {
                 outln!("figure:  {}", png.display());
+            }
+            if let Some(t) = &report.precision_table {
+                outln!("precision: {}", t.display());
+            }
+            if let Some(png) = &report.precision_figure {
+                outln!("precision figure: {}", png.display());
             }
             if saltus::runner::interrupted() {
                 return Err(saltus::runner::Stopped {

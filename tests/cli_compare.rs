@@ -162,3 +162,62 @@ fn compare_reports_a_failing_variant_and_runs_the_others() {
     assert_png(&out.join("comparison.png"));
     assert!(stdout(&o).contains("bad drag"), "{}", stdout(&o));
 }
+
+#[test]
+fn the_precision_table_of_a_grid_study_shows_second_order_convergence() {
+    // case 1 in the two-fluid model at 30, 60, 120 and 240 cells against 960: phi on a
+    // uniform grid converges at second order (docs/performance.md), so its RMS error falls
+    // by close to 4 per doubling; the reference has no error; a deterministic run has a
+    // zero statistical bar; each run's CPU time is measured
+    let d = tmp_dir("compare_precision");
+    let mut text = String::from("[reference]\nvariant = \"960\"\n");
+    for n in [30, 60, 120, 240, 960] {
+        text.push_str(&format!("[[variant]]\nname = \"{n}\"\nset = ['domain.cells={n}']\n"));
+    }
+    let p = compare_file(&d, &text);
+    let out = d.join("out");
+    let o = saltus(&["compare", p.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (header, rows) = read_table(&out.join("precision.csv"));
+    assert_eq!(
+        header[..7],
+        ["variant", "cpu_time_s", "wall_time_s", "qs_star", "qs_star_stderr", "qs_star_error", "qs_star_error_bar"]
+    );
+    let num = |r: usize, c: &str| -> f64 { cell(&header, &rows[r], c).parse().unwrap() };
+    assert_eq!(rows.len(), 5);
+    for r in 0..5 {
+        assert!(num(r, "cpu_time_s") > 0.0 && num(r, "qs_star_error_bar") == 0.0, "{rows:?}");
+        assert!(cell(&header, &rows[r], "qs_star_stderr").is_empty());
+    }
+    assert_eq!((num(4, "qs_star_error"), num(4, "rms_phi")), (0.0, 0.0));
+    for r in 0..3 {
+        let ratio = num(r, "rms_phi") / num(r + 1, "rms_phi");
+        assert!(ratio > 2.2, "RMS phi {} -> {}: ratio {ratio}", num(r, "rms_phi"), num(r + 1, "rms_phi"));
+    }
+    // qs* within 2 % of the finest run from 30 cells on, and 0.1 % at 240
+    assert!(num(0, "qs_star_error").abs() < 0.02 && num(3, "qs_star_error").abs() < 1e-3, "{rows:?}");
+    assert_png(&out.join("precision.png"));
+    assert!(stdout(&o).contains("work against precision"), "{}", stdout(&o));
+}
+
+#[test]
+fn a_bad_reference_is_refused_naming_the_key() {
+    let d = tmp_dir("compare_bad_reference");
+    let out = d.join("out");
+    let run = |p: &Path| saltus(&["compare", p.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let cases = [
+        ("[reference]\nvariant = \"b\"\n", "reference.variant"),
+        ("[reference]\n", "reference"),
+        ("[reference]\nvariant = \"a\"\ndata = true\n", "reference"),
+        ("[reference]\nqs_star = nan\n", "reference.qs_star"),
+        ("[reference]\nqs_star = -1.0\n", "reference.qs_star"),
+        ("[reference]\ndata = true\nqs_star_stderr = 0.1\n", "reference.qs_star_stderr"),
+        ("[reference]\nvariants = \"a\"\n", "variants"),
+    ];
+    for (text, key) in cases {
+        let p = compare_file(&d, &format!("{text}[[variant]]\nname = \"a\"\n"));
+        let err = assert_clean_failure(&run(&p));
+        assert!(err.contains("cmp.toml") && err.contains(key), "{text}: {err}");
+    }
+    assert!(!out.join("comparison.csv").exists(), "nothing runs on a bad reference");
+}

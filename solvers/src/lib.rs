@@ -149,8 +149,13 @@ pub fn run_with(
     }
     let mut recorder = run::Recorder::start(out, scene, stepper.as_ref(), restart.as_ref())?;
     let resumed = recorder.resumed_clock();
+    let cpu_before = run::cpu::thread_seconds().zip(stepper.worker_cpu());
     let driven = run::drive_with(stepper.as_mut(), &mut [&mut recorder, observer], options.max_wall, resumed);
     let mut report = stepper.report(&driven.ending, &driven.clock);
+    report.summary.cpu_time_s = run::cpu::thread_seconds()
+        .zip(stepper.worker_cpu())
+        .zip(cpu_before)
+        .map(|((own, workers), (own0, workers0))| (own - own0) + (workers - workers0));
     let timing = driven.timing(stepper.as_ref());
     report.text.push_str("; ");
     report.text.push_str(&timing.line());

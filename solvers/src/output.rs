@@ -105,6 +105,11 @@ pub struct Summary {
     pub rejected_steps: Option<usize>,
     /// wall-clock time of the solve (s)
     pub wall_time_s: f64,
+    /// CPU time of the solve in this process (s): the calling thread's and the solver's
+    /// own worker threads'; absent where the system does not tell it or where the DEM
+    /// worked on a shared pool (`solver.lagrangian.threads = 0` inside `compare` or `sweep`)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cpu_time_s: Option<f64>,
     /// relative change of the sediment mass over the run; absent where the solver does not
     /// measure it (the DEM conserves its particles by construction)
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -18,7 +18,6 @@
 //! set = ["domain.cells=120"]
 //! ```
 
-pub mod cpu;
 pub mod figure;
 pub mod fit;
 pub mod manifest;

@@ -203,10 +203,10 @@ fn worker(ctx: &Work, shared: &Mutex<Shared>) {
         let dir = out.join(p.dir_name());
         bar.set_message(format!("running {} ({})", p.dir_name(), sweep.describe(p)));
         let job = || {
-            let cpu0 = super::cpu::thread_seconds();
+            let cpu0 = saltus_solvers::run::cpu::thread_seconds();
             let started = Instant::now();
             let result = run_point(sweep, p, base, &dir, restart, warm_from.as_ref().map(|w| out.join(w)));
-            let cpu = super::cpu::thread_seconds().zip(cpu0).map(|(b, a)| b - a);
+            let cpu = saltus_solvers::run::cpu::thread_seconds().zip(cpu0).map(|(b, a)| b - a);
             (result, cpu, started.elapsed().as_secs_f64())
         };
         let (result, cpu, wall) = match &pool {

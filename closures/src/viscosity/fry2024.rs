@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 ///   Couette bedload simulations, figure 8).
 /// * Why the extra power of (1 - phi): Fry's apparent viscosity is defined on the phase
 ///   stress, eta_eq = Sigma^f / gamma_dot (eq 50), and Sigma^f = eps <sigma>^f + n <s^f>^p
-///   - Reynolds (eq 21) already carries the fluid fraction eps = 1 - phi. The fluid-phase
+///   minus the Reynolds stress (eq 21) already carries the fluid fraction eps = 1 - phi. The fluid-phase
 ///   stress of this library's solvers is eps rho_f nu_eff du_f/dz (the trait's ratio
 ///   multiplies nu_f inside eps), so nu_eff = eta_eq / (rho_f eps): the fluid-phase stress
 ///   is then exactly eta_f (1 - phi)^(-beta) gamma_dot, eq 50 with eq 32.

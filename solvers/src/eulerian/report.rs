@@ -193,6 +193,7 @@ impl Eulerian<'_> {
             steps: self.steps(),
             rejected_steps: Some(self.rejected_steps()),
             wall_time_s: wall,
+            cpu_time_s: None,
             mass_error: Some(self.mass_error()),
             residual: output::finite(self.residual()),
             cells: self.len(),

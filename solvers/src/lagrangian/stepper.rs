@@ -63,6 +63,13 @@ impl Stepper for Lagrangian<'_> {
         self.dem().stages().iter().chain(self.work.stages.iter()).collect()
     }
 
+    fn worker_cpu(&self) -> Option<f64> {
+        // each thread of the run's own pool tells its CPU time; on the caller's pool the
+        // threads' time is not the run's alone
+        let pool = self.work.pool.as_ref()?;
+        pool.broadcast(|_| crate::run::cpu::thread_seconds()).into_iter().sum()
+    }
+
     fn paraview_period(&self) -> f64 {
         self.config().settings.numerics.vtk_period
     }

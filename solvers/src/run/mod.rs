@@ -15,6 +15,7 @@
 //! that the caller can report it.
 
 pub mod checkpoint;
+pub mod cpu;
 pub mod history;
 pub mod paraview;
 pub mod timing;
@@ -290,6 +291,13 @@ pub trait Stepper {
     /// Wall time (s) of each stage of the solver's steps so far, in this process.
     fn stages(&self) -> Vec<(&'static str, f64)> {
         Vec::new()
+    }
+
+    /// CPU time (s) the solver's own worker threads have used so far (0 for a solver that
+    /// works on the calling thread only); `None` when its work runs on a pool it shares
+    /// with other work, whose threads' time is not the run's alone.
+    fn worker_cpu(&self) -> Option<f64> {
+        Some(0.0)
     }
 
     /// Flow time between two ParaView snapshots (s), 0 for none.

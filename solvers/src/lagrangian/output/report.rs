@@ -99,6 +99,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
         samples: Some(samples),
         rejected_steps: None,
         wall_time_s: wall,
+        cpu_time_s: None,
         mass_error: None,
         residual: m.steady().change(),
         cells: n,

@@ -1,4 +1,5 @@
-//! CPU time of the calling thread, for a point's line in the manifest.
+//! CPU time of the calling thread: a run's cost in CPU seconds (summary.json `cpu_time_s`,
+//! a sweep point's line in the manifest).
 
 /// CPU time the calling thread has used (s); `None` where the system does not say.
 pub fn thread_seconds() -> Option<f64> {
