@@ -31,12 +31,14 @@ import numpy as np
 
 from . import _native, _study
 from ._native import RunError, SceneError
-from ._study import SweepResult, sweep
+from ._study import CompareResult, SweepResult, compare, sweep
 from . import closures as _closures
 from .closures import register_fluctuation, register_kinetic_theory, register_mixing_length, register_rheology
 
 __all__ = [
     "run",
+    "compare",
+    "CompareResult",
     "sweep",
     "SweepResult",
     "check",

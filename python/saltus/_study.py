@@ -316,3 +316,63 @@ def sweep(
         warnings=list(t["warnings"]),
         errors=errors,
     )
+
+
+def _read_table(path: Optional[str]) -> Optional[Dict[str, List[Any]]]:
+    # a CSV of saltus as columns: numbers where every cell reads as one (empty: NaN)
+    if path is None:
+        return None
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    header, body = rows[0], rows[1:]
+    columns: Dict[str, List[Any]] = {}
+    for k, name in enumerate(header):
+        cells = [r[k] for r in body]
+        try:
+            columns[name] = [float(c) if c != "" else math.nan for c in cells]
+        except ValueError:
+            columns[name] = cells
+    return columns
+
+
+@dataclass
+class CompareResult:
+    """What :func:`compare` wrote: the comparison table and, with a ``[reference]`` in the
+    compare file, the work-precision table (each a dict of columns, as the CSV files in
+    ``out``; ``pandas.DataFrame(result.precision)`` makes a frame of one)."""
+
+    out: Path
+    table: Dict[str, List[Any]]
+    precision: Optional[Dict[str, List[Any]]]
+    figure: Optional[Path]
+    precision_figure: Optional[Path]
+    failures: int
+    warnings: List[str] = field(default_factory=list)
+
+
+def compare(file, set=None, out=None) -> CompareResult:
+    """Run a compare file (the format of ``saltus compare``, docs/studies.md) in this
+    process and return its tables.
+
+    Args:
+        file: the compare file.
+        set: overrides of every variant, as :func:`saltus.run`'s ``set``.
+        out: the output folder (default ``out/<meta.name>``).
+
+    Raises:
+        SceneError: the compare file or its base scene does not load.
+        RunError: the tables could not be written.
+    """
+    from . import _path
+
+    raw = _native.compare(_path(file, "file"), set, None if out is None else _path(out, "out"))
+    opt = lambda p: None if p is None else Path(p)  # noqa: E731
+    return CompareResult(
+        out=Path(raw["out"]),
+        table=_read_table(raw["table"]) or {},
+        precision=_read_table(raw["precision"]),
+        figure=opt(raw["figure"]),
+        precision_figure=opt(raw["precision_figure"]),
+        failures=raw["failures"],
+        warnings=list(raw["warnings"]),
+    )

@@ -322,6 +322,34 @@ fn run<'py>(
     Ok(d)
 }
 
+/// `saltus compare FILE`: every variant, the comparison table and, with a `[reference]`, the
+/// work-precision table; the paths of what it wrote and its warnings.
+#[pyfunction]
+#[pyo3(signature = (file, set=None, out=None))]
+fn compare<'py>(
+    py: Python<'py>,
+    file: PathBuf,
+    set: Option<&Bound<'py, PyAny>>,
+    out: Option<PathBuf>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let set = overrides(set)?;
+    let cmp =
+        py.detach(|| saltus::compare::load(&file, &set)).map_err(|e| SceneError::new_err(saltus::describe(&e)))?;
+    let out = out.unwrap_or_else(|| saltus::compare::default_out(&cmp));
+    let report =
+        py.detach(|| saltus::compare::run(&cmp, &out, false)).map_err(|e| RunError::new_err(saltus::describe(&e)))?;
+    let d = PyDict::new(py);
+    let path = |p: &Option<PathBuf>| p.as_ref().map(|p| p.display().to_string());
+    d.set_item("out", out.display().to_string())?;
+    d.set_item("table", report.table.display().to_string())?;
+    d.set_item("figure", path(&report.figure))?;
+    d.set_item("precision", path(&report.precision_table))?;
+    d.set_item("precision_figure", path(&report.precision_figure))?;
+    d.set_item("failures", report.failures())?;
+    d.set_item("warnings", &report.warnings)?;
+    Ok(d)
+}
+
 /// `saltus models --json`: every registered model (of one family when given).
 #[pyfunction]
 #[pyo3(signature = (family=None))]
@@ -455,6 +483,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("RunError", py.get_type::<RunError>())?;
     m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(compare, m)?)?;
     m.add_function(wrap_pyfunction!(models, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_prepare, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_collect, m)?)?;
