@@ -136,8 +136,49 @@ impl SlipAverage {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use saltus_closures::drag::Stokes;
-    use saltus_closures::hindrance::NoHindrance;
+    use saltus_closures::drag::{HaiderLevenspiel, Stokes};
+    use saltus_closures::hindrance::{DiFelice, NoHindrance};
+
+    /// One cell of slice volume 1 holding grains of volume `vol` moving at `v`.
+    fn sums(vol: f64, v: [f64; 3]) -> CellSums {
+        let mut s = CellSums::new(1);
+        s.vol[0] = vol;
+        for (m, x) in v.iter().enumerate() {
+            s.v[m][0] = vol * x;
+        }
+        s
+    }
+
+    #[test]
+    fn eq_24_averages_the_relative_velocity_from_t0_over_the_samples_with_grains() {
+        // fluid at 0.5 m/s over grains whose streamwise velocity swings and whose
+        // wall-normal velocity swings +-0.05 (alternately faster and slower than the fluid:
+        // 0.2 +- 0.45): before t_0 beta takes the current relative
+        // velocity, after it the mean of the samples (the empty sample left out); the mean
+        // slip (0.3, 0, 0) gives a smaller beta than the swinging one
+        let (drag, hindrance) = (HaiderLevenspiel { sphericity: 0.594 }, DiFelice::default());
+        let law = DampingLaw { drag: &drag, hindrance: &hindrance, diameter: 3e-3, rho_f: 1000.0, nu_f: 1e-6 };
+        let phi = [0.2];
+        let mut a = SlipAverage::new(1);
+        a.update(0.0, 1.0, &sums(0.2, [0.35, 0.0, 0.05]), &[0.5], &phi, &law);
+        let now = (0.15f64 * 0.15 + (0.05 / 0.8) * (0.05 / 0.8)).sqrt();
+        assert!((a.beta[0] - law.beta(now, 0.2)).abs() < 1e-9 * a.beta[0]);
+        assert_eq!(a.samples()[0], 0);
+        let mut swinging = Vec::new();
+        for (i, t) in [1.0, 1.1, 1.2, 1.3].iter().enumerate() {
+            let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+            let v = [0.2 + 0.45 * sign, 0.0, 0.05 * sign];
+            a.update(*t, 1.0, &sums(0.2, v), &[0.5], &phi, &law);
+            swinging.push(law.beta(((0.3 - 0.45 * sign).powi(2) + (0.05 / 0.8f64).powi(2)).sqrt(), 0.2));
+        }
+        a.update(1.4, 1.0, &sums(0.0, [0.0; 3]), &[0.5], &phi, &law);
+        assert_eq!(a.samples()[0], 4);
+        let ur = a.relative_velocity(0);
+        assert!((ur[0] - 0.3).abs() < 1e-12 && ur[1].abs() < 1e-12 && ur[2].abs() < 1e-12, "{ur:?}");
+        assert!((a.beta[0] - law.beta(0.3, 0.2)).abs() < 1e-9 * a.beta[0]);
+        let mean_swinging = swinging.iter().sum::<f64>() / 4.0;
+        assert!(a.beta[0] < 0.95 * mean_swinging, "{} against {mean_swinging}", a.beta[0]);
+    }
 
     #[test]
     fn the_stokes_coefficient_is_18_rho_nu_over_d2() {
