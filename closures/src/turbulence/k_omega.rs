@@ -51,7 +51,8 @@ pub enum KOmegaWall {
 ///   Re_beta = 8, C_mu = 0.09, sigma_k = sigma_w = 2, C_s = 1, C_1w = 0.52, C_2w = 0.072,
 ///   C_3w = 0.14, C_4w = 0; text: C_t = 1/6, kappa = 0.41, phi_b = 0.55, k_s = 2.5 d;
 ///   two calibrated constants (see decisions): C_s = 0.25 (table 1: 1) and K_r = 65 (text:
-///   80); sigma_c = 1 (not given in the paper, see decisions).
+///   80); sigma_c = 1 (not given in the paper, see decisions); no time average of the
+///   relative velocity (eq 24, text: t_0 = 5 s; see decisions).
 /// * Valid range: coefficients positive (C_3w, C_4w, C_s non-negative); phi_b in (0, 1).
 ///   Low-Reynolds wall-bounded flow with the first cell in the viscous sublayer
 ///   (z_o^+ < ~2) for the smooth wall and well inside it (z_o^+ < ~0.3) for the rough wall,
@@ -64,8 +65,15 @@ pub enum KOmegaWall {
 /// * The production is tau_ft/rho_f : grad u with tau_ft of eq 20, i.e. eps nu_t S^2 (the eps
 ///   of eq 20 kept, as printed); nu_t itself carries no eps (the solver applies it once in
 ///   the momentum equation, as for the mixing-length closures).
-/// * beta is evaluated with the current slip, not the time average of eq 24 (a steady 1D
-///   column has no turbulent slip fluctuation to average out).
+/// * beta of eq 23 is the solver's: in the Eulerian solver the drag coefficient of the
+///   phases' current relative velocity. Eq 24 averages that relative velocity in time from
+///   t_0 (Cheng: t_0 = 5 s) because in a DEM the cell averages of the grains fluctuate, and
+///   |U_r| of a fluctuating slip is larger than |<U_r>|: `slip_average_start = t_0` asks the
+///   solver for that average (the DEM scenes of Cheng's cases set it; the DEM then takes beta
+///   of eq 23 from the time-averaged difference of the cell-mean fluid and grain velocities
+///   instead of the grains' exchange coefficient, docs/notes/k_omega_dem_coupling.md). A
+///   steady Eulerian column has no slip fluctuation to average out: there the option changes
+///   nothing at steady state and the solver keeps the current relative velocity.
 /// * sigma_c (turbulent Schmidt number of the buoyancy terms) is not in table 1; 1 by default.
 /// * Every term is split into a non-negative source and a non-negative implicit sink rate:
 ///   a buoyancy term enters the source when it produces and the sink when it destroys;
@@ -166,6 +174,11 @@ pub struct KOmega {
     /// bed volume fraction phi_b of eq 32
     #[param(range = "(0, 1)", unit = "-")]
     pub phi_bed: f64,
+    /// start t_0 of the time average of the phases' relative velocity in beta (eq 24); none:
+    /// the current relative velocity
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[param(range = "[0, inf)", unit = "s")]
+    pub slip_average_start: Option<f64>,
 }
 
 impl Default for KOmega {
@@ -191,6 +204,7 @@ impl Default for KOmega {
             roughness: 2.5,
             k_r: 65.0,
             phi_bed: 0.55,
+            slip_average_start: None,
         }
     }
 }
@@ -369,6 +383,10 @@ impl TwoEquation for KOmega {
 
     fn eddy_viscosity_of(&self, k: f64, omega: f64, nu: f64) -> f64 {
         self.nu_t(k, omega, nu)
+    }
+
+    fn slip_average_start(&self) -> Option<f64> {
+        self.slip_average_start
     }
 
     fn wall_location(&self) -> WallOmega {

@@ -169,4 +169,12 @@ pub trait TwoEquation: Send + Sync {
         let _ = (phi, diameter);
         self.initial_state(u_star, height, nu)
     }
+
+    /// Start t_0 (s) of the time average of the phases' relative velocity that sets the
+    /// drag coefficient of the drag-damping terms (Cheng et al. 2018 eq 24), or `None` for
+    /// the current relative velocity. A solver whose particles fluctuate about their mean
+    /// (the DEM) averages from t_0; a steady continuum column has nothing to average.
+    fn slip_average_start(&self) -> Option<f64> {
+        None
+    }
 }

@@ -50,6 +50,11 @@ pub struct FluidColumn {
     tri: Tridiagonal,
     /// k and omega of a two-equation closure, allocated on the first step with one
     kw: Option<KOmegaRun>,
+    /// beta of Cheng et al. eq 23 per unit particle volume given by the caller for the
+    /// drag damping of k and omega ([`FluidColumn::set_damping_drag`]); empty: the
+    /// exchange's beta over phi
+    #[serde(default)]
+    damping: Vec<f64>,
     /// no step taken yet: the first nu_t is taken unrelaxed
     fresh: bool,
 }
@@ -85,6 +90,7 @@ impl FluidColumn {
             wall: if params.side_walls.is_some() { vec![0.0; n] } else { Vec::new() },
             tri: Tridiagonal::new(n),
             kw: None,
+            damping: Vec::new(),
             fresh: true,
             op: ColumnOperator::new(grid),
         };
@@ -167,6 +173,36 @@ impl FluidColumn {
     /// cell of a two-equation closure; `None` before the first step with one.
     pub fn k_omega(&self) -> Option<(&[f64], &[f64])> {
         self.kw.as_ref().map(|kw| (kw.col.k.as_slice(), kw.col.omega.as_slice()))
+    }
+
+    /// Give the drag coefficient beta of Cheng et al. eq 23 (per unit particle volume,
+    /// kg m^-3 s^-1, one per cell) that the drag damping of k and omega takes from the next
+    /// step on, instead of the exchange's beta over phi (a DEM coupling whose closure
+    /// averages the relative velocity in time, eq 24). A slice of another length goes back
+    /// to the exchange's.
+    pub fn set_damping_drag(&mut self, beta: &[f64]) {
+        self.damping.clear();
+        if beta.len() == self.u.len() {
+            self.damping.extend_from_slice(beta);
+        }
+    }
+
+    /// The exchange's implicit drag coefficient beta per cell of the last step (kg m^-3
+    /// s^-1, per unit mixture volume, [`Coupling::beta`]).
+    pub fn exchange_drag(&self) -> &[f64] {
+        &self.beta
+    }
+
+    /// Terms of the k and omega equations of the last step (the closure's, at k and omega
+    /// of the start of that step); `None` before the first step with a two-equation closure.
+    pub fn two_equation_terms(&self) -> Option<&saltus_core::closure::turbulence::TwoEquationTerms> {
+        self.kw.as_ref().map(|kw| kw.col.terms())
+    }
+
+    /// beta of Cheng et al. eq 23 per cell (kg m^-3 s^-1) that the last step of k and omega
+    /// took; `None` before the first step with a two-equation closure.
+    pub fn damping_drag(&self) -> Option<&[f64]> {
+        self.kw.as_ref().map(|kw| kw.drag.as_slice())
     }
 
     /// eps (nu_eff + nu_t) per cell (m^2/s), the kinematic diffusivity of the momentum
@@ -386,11 +422,15 @@ impl FluidColumn {
         };
         let n = self.u.len();
         let Some(kw) = self.kw.as_mut() else { return Ok(()) };
-        for i in 0..n {
-            // beta of eq 23 per unit particle volume: the coupling's beta is per unit
-            // mixture volume, phi times it; it only enters multiplied by phi again
-            let phi = self.phi[i];
-            kw.drag[i] = if phi > 1e-12 { self.beta[i] / phi } else { 0.0 };
+        if self.damping.len() == n {
+            kw.drag.copy_from_slice(&self.damping);
+        } else {
+            for i in 0..n {
+                // beta of eq 23 per unit particle volume: the coupling's beta is per unit
+                // mixture volume, phi times it; it only enters multiplied by phi again
+                let phi = self.phi[i];
+                kw.drag[i] = if phi > 1e-12 { self.beta[i] / phi } else { 0.0 };
+            }
         }
         let result = kw.advance(model, &self.op, &physics, &self.phi, &self.u, &self.dudz, self.ratio[0], dt);
         let zc = self.op.grid().centres();

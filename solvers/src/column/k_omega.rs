@@ -102,6 +102,12 @@ impl KOmegaColumn {
         self.omega.copy_from_slice(&self.saved_omega);
     }
 
+    /// The closure's terms of the last [`KOmegaColumn::advance`], evaluated with k and
+    /// omega at the start of that step.
+    pub fn terms(&self) -> &TwoEquationTerms {
+        &self.terms
+    }
+
     /// k at the last [`KOmegaColumn::save`].
     pub fn saved_k(&self) -> &[f64] {
         &self.saved_k

@@ -44,6 +44,11 @@ fn defaults_are_table_1() {
     assert_eq!([m.c_s, m.c_1omega, m.c_2omega, m.c_3omega, m.c_4omega], [0.25, 0.52, 0.072, 0.14, 0.0]);
     // K_r: recalibrated from the paper's 80 for the low-Re functions (see the decisions)
     assert_eq!([m.roughness, m.k_r, m.phi_bed], [2.5, 65.0, 0.55]);
+    // eq 24's time average of the relative velocity: off unless a scene asks (the DEM's)
+    assert_eq!(m.slip_average_start, None);
+    assert_eq!(TwoEquation::slip_average_start(&m), None);
+    let with = KOmega { slip_average_start: Some(5.0), ..KOmega::default() };
+    assert_eq!(TwoEquation::slip_average_start(&with), Some(5.0));
     assert!(m.validate().is_ok());
 }
 

@@ -3,4 +3,5 @@
 //! particles on the cells and the momentum exchange with the column. Uses [`super::engine`].
 
 pub mod averaging;
+pub mod damping;
 pub mod drag;

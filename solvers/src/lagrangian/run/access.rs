@@ -62,6 +62,15 @@ impl Lagrangian<'_> {
     pub fn fluid_velocity(&self) -> &[f64] {
         &self.state.field.u
     }
+    /// Volume fraction per cell of the last fluid update, as the column and the closures
+    /// took it.
+    pub fn volume_fraction(&self) -> &[f64] {
+        &self.state.field.phi
+    }
+    /// Height of the column bottom in particle coordinates (m).
+    pub fn column_base(&self) -> f64 {
+        self.state.field.base
+    }
     /// Cells of the fluid column.
     pub fn cells(&self) -> usize {
         self.state.field.u.len()

@@ -12,6 +12,7 @@ use super::solver::{Lagrangian, CHECK_STEPS};
 use super::state::Stage;
 use crate::column::{FluidColumn, Grid};
 use crate::lagrangian::coupling::averaging::{CellSums, Seen};
+use crate::lagrangian::coupling::damping::SlipAverage;
 use crate::lagrangian::coupling::drag::{FluidField, FluidForces};
 use crate::lagrangian::stats::granular::GranularStats;
 use crate::lagrangian::stats::statistics::Stats;
@@ -146,6 +147,9 @@ impl Lagrangian<'_> {
         self.state.field = FluidField::at_rest(cells, dz, base);
         self.state.field.set_bed_threshold(self.params.fluctuation.and_then(|f| f.above_bed()));
         self.state.sums = CellSums::new(cells);
+        if !self.state.slip.is_empty() {
+            self.state.slip = SlipAverage::new(cells);
+        }
         let v = |x: f64| vec![x; cells];
         self.state.phi = v(0.0);
         self.state.u_p = v(0.0);

@@ -12,6 +12,7 @@ use super::state::{Stage, State};
 use super::workspace::Workspace;
 use crate::column::{FluidColumn, Grid, TopBoundary};
 use crate::lagrangian::coupling::averaging::CellSums;
+use crate::lagrangian::coupling::damping::SlipAverage;
 use crate::lagrangian::coupling::drag::{FluidField, FluidForces};
 use crate::lagrangian::engine::contact::{ContactLaw, ContactModel};
 use crate::lagrangian::engine::dem::Dem;
@@ -114,6 +115,10 @@ impl<'a> Lagrangian<'a> {
             .map_err(|e| Error::Invalid(format!("{file}: key `solver.lagrangian.cells`: {e}")))?;
         let dz = grid.dz()[0];
         let mut column_params = None;
+        // the drag damping of a two-equation closure from the time-averaged relative velocity
+        // of the phases (Cheng eq 24), when the closure asks for it
+        let slip_average = s.numerics.fluid == FluidMode::Coupled
+            && turbulence.as_two_equation().and_then(|m| m.slip_average_start()).is_some();
         let column = if s.numerics.fluid == FluidMode::Coupled {
             let params = crate::column::ColumnParams {
                 density: scene.fluid.density,
@@ -222,6 +227,7 @@ impl<'a> Lagrangian<'a> {
                 steady: Steady::new(s.numerics.steady_window, s.numerics.steady_tolerance, s.numerics.steady_windows),
                 cell_volume: cfg.domain.length * cfg.domain.width * dz,
                 bed_surface: cfg.bed_surface(),
+                slip: SlipAverage::new(if slip_average { cells } else { 0 }),
             },
             work: Workspace::new(n, cells, pool),
         })

@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::column::FluidColumn;
 use crate::lagrangian::coupling::averaging::CellSums;
+use crate::lagrangian::coupling::damping::SlipAverage;
 use crate::lagrangian::coupling::drag::{FluidField, FluidForces};
 use crate::lagrangian::engine::dem::Dem;
 use crate::lagrangian::stats::granular::GranularStats;
@@ -62,6 +63,9 @@ pub struct State {
     pub(crate) cell_volume: f64,
     /// nominal bed surface above the column bottom (m), measured after the deposition
     pub(crate) bed_surface: f64,
+    /// time averages of the cell-mean relative velocity for the drag damping of a
+    /// two-equation closure (Cheng et al. eq 24); no cell when the closure does not ask
+    pub(crate) slip: SlipAverage,
 }
 
 impl State {
@@ -92,5 +96,6 @@ impl State {
             && [&self.phi, &self.u_p, &self.beta, &self.tau_t].iter().all(|a| a.len() == cells)
             && self.column.as_ref().is_none_or(|c| c.velocity().len() == cells)
             && self.granular.as_ref().is_none_or(|g| g.fits(cells))
+            && (self.slip.is_empty() || self.slip.len() == cells)
     }
 }

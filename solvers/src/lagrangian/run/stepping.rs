@@ -15,6 +15,7 @@ use super::state::{Stage, State};
 use crate::column::{Closures, Coupling};
 use crate::inputs;
 use crate::lagrangian::coupling::averaging::Seen;
+use crate::lagrangian::coupling::damping::DampingLaw;
 use crate::run::{Breakdown, Ending, Limits, Place, Stepper};
 
 impl Lagrangian<'_> {
@@ -171,6 +172,18 @@ impl Lagrangian<'_> {
         let t0 = Instant::now();
         let tau_f = self.params.cfg.settings.numerics.fluid_period;
         if let Some(col) = self.state.column.as_mut() {
+            if let Some(start) = self.params.turbulence.as_two_equation().and_then(|m| m.slip_average_start()) {
+                let law = DampingLaw {
+                    drag: self.params.drag,
+                    hindrance: self.params.hindrance,
+                    diameter: col.params().diameter,
+                    rho_f: self.params.rho_f,
+                    nu_f: col.params().viscosity,
+                };
+                let (sums, phi) = (&self.state.sums, &self.state.field.phi);
+                self.state.slip.update(self.state.time, start, sums, col.velocity(), phi, &law);
+                col.set_damping_drag(&self.state.slip.beta);
+            }
             let coupling = Coupling { phi: &self.state.field.phi, beta: &self.state.beta, u_p: &self.state.u_p };
             let closures = Closures {
                 viscosity: self.params.viscosity,
