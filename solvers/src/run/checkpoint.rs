@@ -37,8 +37,9 @@ const MAGIC: &[u8; 8] = b"SALTUSCP";
 /// the blocking of qs and the temperature history; 3: the DEM carries the half-cylinder
 /// bottom, its histories and the walls' own law, and the contact law its normal force;
 /// 4: the DEM state is the solver's `State` as one struct, the ParaView series and the
-/// driver's clock travel with the cadences).
-pub const VERSION: u32 = 4;
+/// driver's clock travel with the cadences; 5: the DEM carries the time average of the
+/// phases' relative velocity of Cheng's eq 24).
+pub const VERSION: u32 = 5;
 
 /// What a checkpoint holds besides its framing.
 #[derive(Serialize, Deserialize)]
