@@ -17,6 +17,7 @@
 pub mod checkpoint;
 pub mod history;
 pub mod paraview;
+pub mod phases;
 pub mod timing;
 
 use std::borrow::Cow;
@@ -32,6 +33,7 @@ use crate::output::Profiles;
 use crate::RunReport;
 
 pub use history::Recorder;
+pub use phases::PhaseAverages;
 
 /// Where a run went bad.
 #[derive(Clone, Debug, PartialEq, Serialize)]
