@@ -25,7 +25,7 @@ impl Eulerian<'_> {
         let t = Instant::now();
         self.s.save(&mut self.saved);
         let grad = self.pressure_gradient(self.s.time + dt);
-        let bdf2 = self.accurate().then(|| self.stepping.previous.dt).filter(|&p| p > 0.0).map(|p| dt / p);
+        let bdf2 = self.accurate().then_some(self.stepping.previous.dt).filter(|&p| p > 0.0).map(|p| dt / p);
         self.solve_momentum(dt, grad, bdf2)?;
         let t = self.stages.lap(stage::MOMENTUM, t);
         if self.kinetic {

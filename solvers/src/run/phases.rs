@@ -111,7 +111,7 @@ impl PhaseAverages {
     pub fn add(&mut self, t: f64, qs: Option<f64>, profiles: Option<&Profiles>) {
         let dt = t - self.last;
         self.last = t;
-        if !(dt > 0.0) {
+        if dt.is_nan() || dt <= 0.0 {
             return;
         }
         // the unit is binned at the middle of the time it stands for
@@ -125,9 +125,9 @@ impl PhaseAverages {
         if self.current.as_ref().is_some_and(|(i, _)| *i != k) {
             self.close();
         }
-        let (_, sums) = self.current.get_or_insert_with(|| {
-            (k, PeriodSums { qs: vec![0.0; self.bins], time: vec![0.0; self.bins] })
-        });
+        let (_, sums) = self
+            .current
+            .get_or_insert_with(|| (k, PeriodSums { qs: vec![0.0; self.bins], time: vec![0.0; self.bins] }));
         sums.qs[bin] += qs.unwrap_or(0.0) * dt;
         sums.time[bin] += dt;
         if let Some(p) = profiles {
@@ -201,7 +201,8 @@ impl PhaseAverages {
 
     /// The net transport per period and its error.
     pub fn net(&self) -> NetTransport {
-        let per: Vec<f64> = self.done.iter().map(|p| p.qs.iter().sum::<f64>() * self.period / p.time.iter().sum::<f64>()).collect();
+        let per: Vec<f64> =
+            self.done.iter().map(|p| p.qs.iter().sum::<f64>() * self.period / p.time.iter().sum::<f64>()).collect();
         let (mean, error) = mean_and_error(&per);
         NetTransport {
             period: self.period,
@@ -242,7 +243,7 @@ impl PhaseAverages {
             let mut text = format!("phase,t_over_period,z,{}\n", self.names.join(","));
             for b in 0..self.bins {
                 let w = self.profile_weight[b];
-                if !(w > 0.0) || self.profiles[b].is_empty() {
+                if w.is_nan() || w <= 0.0 || self.profiles[b].is_empty() {
                     continue;
                 }
                 let phase = (b as f64 + 0.5) / self.bins as f64;
@@ -313,7 +314,8 @@ mod tests {
             state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
             ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 0.2
         };
-        let profile = |t: f64| Profiles { columns: vec![("z".into(), vec![0.0, 1.0]), ("u".into(), vec![signal(t), 2.0])] };
+        let profile =
+            |t: f64| Profiles { columns: vec![("z".into(), vec![0.0, 1.0]), ("u".into(), vec![signal(t), 2.0])] };
         let periods = 12;
         for k in 1..=periods * steps_per_period {
             let t = k as f64 * dt;
