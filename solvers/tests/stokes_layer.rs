@@ -210,3 +210,50 @@ fn a_forcing_needs_the_time_accurate_stepping() {
     let e = Scene::from_table(t, Path::new("stokes.toml")).expect_err("refused").to_string();
     assert!(e.contains("solver.eulerian.time_stepping") && e.contains("stokes.toml"), "{e}");
 }
+
+/// The scene of the Stokes layer with one key's text replaced: the error it loads with.
+fn refused(from: &str, to: &str) -> String {
+    refused_all(&[(from, to)])
+}
+
+/// [`refused`] with several replacements.
+fn refused_all(changes: &[(&str, &str)]) -> String {
+    let mut text = two_fluid(100).to_toml().unwrap();
+    for (from, to) in changes {
+        assert!(text.contains(from), "{from} not in the resolved scene");
+        text = text.replacen(from, to, 1);
+    }
+    let t = parse_table(&text, Path::new("stokes.toml")).expect("toml");
+    match Scene::from_table(t, Path::new("stokes.toml")) {
+        Err(e) => e.to_string(),
+        Ok(_) => panic!("accepted with {changes:?}"),
+    }
+}
+
+/// The resolved scene prints the forcing; bad combinations are refused at their key.
+#[test]
+fn forcing_combinations_are_checked_at_load() {
+    let text = two_fluid(100).to_toml().unwrap();
+    assert!(text.contains("[physics.forcing]") && text.contains("type = \"sinusoids\""), "{text}");
+    let e = refused("type = \"sinusoids\"", "type = \"square\"");
+    assert!(e.contains("physics.forcing") && e.contains("square"), "{e}");
+    let e = refused("[physics.forcing]", "[physics.forcing]\nbogus = 1");
+    assert!(e.contains("physics.forcing") && e.contains("bogus"), "{e}");
+    let e = refused_all(&[
+        ("slope = 0.0\n", ""),
+        ("pressure_gradient = 0.0", "pressure_gradient = 0.0\nshields = 0.5\ndrive = \"slope\""),
+    ]);
+    assert!(e.contains("physics.forcing") && e.contains("shields"), "{e}");
+    let e = refused("[output]", "[output]\nphases = 8\nspin_up_periods = 2");
+    assert!(e.contains("output.spin_up_periods"), "{e}");
+    let e = refused_all(&[
+        ("type = \"eulerian\"", "type = \"lagrangian\""),
+        ("stop_when_steady = false", "stop_when_steady = true"),
+    ]);
+    assert!(e.contains("solver.lagrangian.stop_when_steady"), "{e}");
+    let e = refused_all(&[
+        ("[output]", "[output]\nphases = 8"),
+        ("type = \"sinusoids\"\nperiod = 1.0\nmean = 0.0\namplitudes = [0.1]", "type = \"constant\"\nvalue = 1.0"),
+    ]);
+    assert!(e.contains("output.phases"), "{e}");
+}
