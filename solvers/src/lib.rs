@@ -150,7 +150,14 @@ pub fn run_with(
     let mut recorder = run::Recorder::start(out, scene, stepper.as_ref(), restart.as_ref())?;
     let resumed = recorder.resumed_clock();
     let cpu_before = run::cpu::thread_seconds().zip(stepper.worker_cpu());
-    let driven = run::drive_with(stepper.as_mut(), &mut [&mut recorder, observer], options.max_wall, resumed);
+    let mut phases = run::PhaseAverages::of_scene(scene);
+    let driven = match phases.as_mut() {
+        Some(p) => run::drive_with(stepper.as_mut(), &mut [&mut recorder, p, observer], options.max_wall, resumed),
+        None => run::drive_with(stepper.as_mut(), &mut [&mut recorder, observer], options.max_wall, resumed),
+    };
+    if let Some(p) = &phases {
+        p.write(out, scene.physics.forcing.as_ref())?;
+    }
     let mut report = stepper.report(&driven.ending, &driven.clock);
     report.summary.cpu_time_s = run::cpu::thread_seconds()
         .zip(stepper.worker_cpu())

@@ -12,6 +12,7 @@
 
 mod closures;
 mod domain;
+mod forcing;
 mod lagrangian;
 mod overrides;
 mod python;
@@ -31,6 +32,7 @@ use crate::param::ParamRange;
 
 pub use closures::{closure_from_value, de_concrete, granular_from_value, Closures, DEFAULT_MODELS};
 pub use domain::{CellSize, Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT, MAX_STRETCH_DECADES};
+pub use forcing::{Forcing, Quantity, Signal};
 pub use lagrangian::{
     Case, DragVelocity, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, FREY_LEVELS, MAX_FLUID_CELLS, MAX_PARTICLES,
     MAX_SIDE_DIAMETERS,
@@ -39,12 +41,12 @@ pub use overrides::{apply_override, parse_table};
 pub use python::Python;
 pub use solver::{
     default_elastic_phi_rlp, Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver,
-    SolverKind, Surface, ELASTIC_PHI_RLP, MAX_TIME,
+    SolverKind, Surface, TimeStepping, ELASTIC_PHI_RLP, MAX_TIME,
 };
 use tables::STIFFNESS;
 pub use tables::{
     Contact, ContactModel, Drive, Fluid, Meta, NormalForce, Output, Particles, Physics, Reference, ShieldsWeight,
-    MAX_SNAPSHOTS, MAX_TIMESERIES_ROWS, TIMESERIES_ROWS,
+    MAX_PHASES, MAX_SNAPSHOTS, MAX_TIMESERIES_ROWS, TIMESERIES_ROWS,
 };
 
 /// Packing the DEM counts the particles of a bed with when `domain.bed_phi` is absent.
@@ -220,7 +222,9 @@ impl Scene {
         let closures_value = table.remove("closures");
         let given = shields::Given::of(&table);
         let reference_value = table.remove("reference");
+        let forcing_value = table.get_mut("physics").and_then(|p| p.as_table_mut()).and_then(|p| p.remove("forcing"));
         let mut base: Base = de_path(toml::Value::Table(table), file, "")?;
+        base.physics.forcing = forcing_value.map(|v| Forcing::from_value(v, file)).transpose()?;
         let reference = tables::references(reference_value, file)?;
         base.fluid.check(file)?;
         base.particles.check(file)?;
@@ -368,12 +372,59 @@ impl Scene {
         }
     }
 
+    /// `output.phases` needs a periodic forcing and a whole period after the spin-up.
+    fn check_phases(&self, end_time: f64, end_key: &str) -> Result<()> {
+        let f = self.path.as_path();
+        if self.output.phases == 0 {
+            return Ok(());
+        }
+        let Some(period) = self.physics.forcing.as_ref().and_then(Forcing::period) else {
+            return Err(Error::Key {
+                file: f.into(),
+                key: "output.phases".into(),
+                message: "phase averages need a periodic physics.forcing (sinusoids, stokes2, abreu2010, or a table with a period)".into(),
+            });
+        };
+        let needed = (self.output.spin_up_periods as f64 + 1.0) * period;
+        if end_time < needed * (1.0 - 1e-12) {
+            return Err(Error::Key {
+                file: f.into(),
+                key: "output.spin_up_periods".into(),
+                message: format!(
+                    "= {} periods of {} s leave no whole period before {end_key} = {} s (at least {} s)",
+                    self.output.spin_up_periods,
+                    crate::param::number(period),
+                    crate::param::number(end_time),
+                    crate::param::number(needed)
+                ),
+            });
+        }
+        Ok(())
+    }
+
     /// What the active solver needs beyond the ranges of its keys.
     fn check_active(&self) -> Result<()> {
         let f = self.path.as_path();
         let (end_time, end_key) = self.end_time();
         self.output.check(f, end_time, end_key)?;
         let key = |k: &str, m: String| Error::Key { file: f.into(), key: k.into(), message: m };
+        self.check_phases(end_time, end_key)?;
+        let unsteady = self.physics.forcing.as_ref().is_some_and(Forcing::is_unsteady);
+        match self.solver.kind {
+            SolverKind::Eulerian if unsteady && self.solver.eulerian.time_stepping == TimeStepping::Steady => {
+                return Err(key(
+                    "solver.eulerian.time_stepping",
+                    "= \"steady\" marches to a steady state that a time-dependent physics.forcing never reaches, with a first-order time error; use \"accurate\"".into(),
+                ));
+            }
+            SolverKind::Lagrangian if unsteady && self.solver.lagrangian.stop_when_steady => {
+                return Err(key(
+                    "solver.lagrangian.stop_when_steady",
+                    "= true stops at a steady transport rate that a time-dependent physics.forcing never gives; set it to false".into(),
+                ));
+            }
+            _ => {}
+        }
         match self.solver.kind {
             SolverKind::Eulerian => {
                 if self.domain.height() <= 0.0 {
@@ -552,7 +603,15 @@ impl Physics {
     fn check(&self, f: &Path) -> Result<()> {
         check(f, "physics.gravity", self.gravity, ParamRange::closed(0.0, 1e3))?;
         check(f, "physics.slope", self.slope, ParamRange::closed(-1.0, 1.0))?;
-        check(f, "physics.pressure_gradient", self.pressure_gradient, ParamRange::closed(-1e9, 1e9))
+        check(f, "physics.pressure_gradient", self.pressure_gradient, ParamRange::closed(-1e9, 1e9))?;
+        if self.forcing.is_some() && self.shields.is_some() {
+            return Err(Error::Key {
+                file: f.into(),
+                key: "physics.forcing".into(),
+                message: "with physics.shields: a Shields number sets a steady driving; give the driving by physics.pressure_gradient or physics.slope with a forcing".into(),
+            });
+        }
+        Ok(())
     }
 }
 

@@ -81,6 +81,24 @@ pub struct EulerianSettings {
     pub elastic_phi_rlp: Option<f64>,
     /// initial granular temperature (m^2/s^2) in the bed, a seed for the kinetic equation
     pub initial_temperature: f64,
+    /// how time is stepped ([`TimeStepping`])
+    pub time_stepping: TimeStepping,
+}
+
+/// `solver.eulerian.time_stepping`: march to a steady state, or follow the flow in time.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum TimeStepping {
+    /// backward Euler with a time step that grows while the fields change little, ending
+    /// at the steady state (`steady_tolerance`, `steady_steps`) or the end time
+    #[default]
+    Steady,
+    /// the momentum of both phases by the variable-step second-order backward
+    /// differentiation formula (BDF2) at a step of at most `dt_max`, limited by the phi
+    /// changes only (shorter after a rejection, or to land on the end time), no steady ending: the run follows a time-dependent
+    /// forcing to the end time. The volume fraction, granular temperature and k-omega
+    /// steps stay backward Euler (first order).
+    Accurate,
 }
 
 impl Default for EulerianSettings {
@@ -99,6 +117,7 @@ impl Default for EulerianSettings {
             elastic_p0: 0.05,
             elastic_phi_rlp: None,
             initial_temperature: 1e-6,
+            time_stepping: TimeStepping::Steady,
         }
     }
 }

@@ -240,6 +240,10 @@ pub struct Physics {
     /// vertical one
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shields_weight: Option<ShieldsWeight>,
+    /// a driving that varies in time, added to `pressure_gradient` (`[physics.forcing]`,
+    /// read on its own by [`super::Forcing::from_value`])
+    #[serde(skip_deserializing, skip_serializing_if = "Option::is_none")]
+    pub forcing: Option<super::Forcing>,
 }
 
 /// The quantity a scene's Shields number (`physics.shields`) sets.
@@ -283,12 +287,20 @@ fn default_g() -> f64 {
 
 impl Default for Physics {
     fn default() -> Self {
-        Self { gravity: crate::G, slope: 0.0, pressure_gradient: 0.0, shields: None, drive: None, shields_weight: None }
+        Self {
+            gravity: crate::G,
+            slope: 0.0,
+            pressure_gradient: 0.0,
+            shields: None,
+            drive: None,
+            shields_weight: None,
+            forcing: None,
+        }
     }
 }
 
 /// Output settings.
-#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Output {
     /// output folder; `out/<meta.name>` when absent
@@ -305,7 +317,40 @@ pub struct Output {
     /// one only when the run stops (interrupted or at its end)
     #[serde(default)]
     pub checkpoint_interval: f64,
+    /// phase bins of the phase averages of a periodic `physics.forcing` (`phases.csv`,
+    /// `phase_profiles.csv`); 0 (the default) computes none
+    #[serde(default, skip_serializing_if = "is_zero_usize")]
+    pub phases: usize,
+    /// whole periods of the forcing left out of the phase averages, from the start
+    #[serde(default = "default_spin_up", skip_serializing_if = "is_default_spin_up")]
+    pub spin_up_periods: usize,
 }
+
+fn is_zero_usize(n: &usize) -> bool {
+    *n == 0
+}
+fn default_spin_up() -> usize {
+    1
+}
+fn is_default_spin_up(n: &usize) -> bool {
+    *n == default_spin_up()
+}
+
+impl Default for Output {
+    fn default() -> Self {
+        Self {
+            dir: None,
+            timeseries_interval: None,
+            snapshot_interval: 0.0,
+            checkpoint_interval: 0.0,
+            phases: 0,
+            spin_up_periods: default_spin_up(),
+        }
+    }
+}
+
+/// Most phase bins of `output.phases`.
+pub const MAX_PHASES: usize = 10_000;
 
 /// Rows of `timeseries.csv` over the end time with the default interval.
 pub const TIMESERIES_ROWS: f64 = 1000.0;
@@ -334,6 +379,8 @@ impl Output {
             });
         }
         let max = super::MAX_TIME;
+        check(f, "output.phases", self.phases as f64, ParamRange::closed(0.0, MAX_PHASES as f64))?;
+        check(f, "output.spin_up_periods", self.spin_up_periods as f64, ParamRange::closed(0.0, 1e6))?;
         if let Some(t) = self.timeseries_interval {
             check(f, "output.timeseries_interval", t, ParamRange::open_closed(0.0, max))?;
             at_least(f, "output.timeseries_interval", t, end_time, end_key, MAX_TIMESERIES_ROWS, "rows")?;

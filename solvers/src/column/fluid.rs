@@ -57,6 +57,15 @@ pub struct FluidColumn {
     damping: Vec<f64>,
     /// no step taken yet: the first nu_t is taken unrelaxed
     fresh: bool,
+    /// [`FluidColumn::step_bdf2`]: the velocity before the last step and that step's
+    /// length (s, 0 before the first)
+    #[serde(default)]
+    previous: Vec<f64>,
+    #[serde(default)]
+    previous_dt: f64,
+    /// the velocity at the start of a BDF2 step (scratch)
+    #[serde(skip)]
+    start: Vec<f64>,
 }
 
 /// Pseudo-time step of k and omega in [`FluidColumn::solve_steady`] in units of the
@@ -92,6 +101,9 @@ impl FluidColumn {
             kw: None,
             damping: Vec::new(),
             fresh: true,
+            previous: Vec::new(),
+            previous_dt: 0.0,
+            start: Vec::new(),
             op: ColumnOperator::new(grid),
         };
         let s = col.params.density * col.params.gravity_x + col.params.pressure_gradient;
@@ -119,6 +131,20 @@ impl FluidColumn {
     /// Simulated time (s), advanced by [`FluidColumn::step`] with a finite dt.
     pub fn time(&self) -> f64 {
         self.time
+    }
+
+    /// Set the imposed pressure gradient G_x = -dp/dx (Pa/m) of the next steps: a forcing
+    /// that varies in time. A non-finite value is refused.
+    pub fn set_pressure_gradient(&mut self, g: f64) -> Result<(), ColumnError> {
+        if !g.is_finite() {
+            return Err(ColumnError::InvalidParameter {
+                name: "pressure_gradient",
+                value: g,
+                reason: "must be finite",
+            });
+        }
+        self.params.pressure_gradient = g;
+        Ok(())
     }
 
     /// Set the simulated time (s), e.g. on restart.
@@ -273,6 +299,37 @@ impl FluidColumn {
     /// solves the steady equation with the lagged nu_t (one Picard iteration); time is
     /// advanced only for finite `dt`.
     pub fn step(&mut self, dt: f64, coupling: &Coupling<'_>, closures: &Closures<'_>) -> Result<(), ColumnError> {
+        self.advance(dt, coupling, closures, None)
+    }
+
+    /// Advance by a finite `dt` (s) with the variable-step second-order backward
+    /// differentiation formula (BDF2; Hairer & Wanner, Solving ODEs II, section III.5):
+    /// (1 + 2w)/(1 + w) u^{n+1} - (1 + w) u^n + w^2/(1 + w) u^{n-1} = dt L(u^{n+1}) with
+    /// w = dt / dt_{n-1}, the coefficients lagged as in [`FluidColumn::step`]; the first
+    /// step (no u^{n-1} yet) is backward Euler. Second order in time for a laminar column
+    /// (docs/verification.md, the Stokes layer); k and omega stay backward Euler.
+    pub fn step_bdf2(&mut self, dt: f64, coupling: &Coupling<'_>, closures: &Closures<'_>) -> Result<(), ColumnError> {
+        if !dt.is_finite() {
+            return Err(ColumnError::InvalidParameter { name: "dt", value: dt, reason: "must be finite and > 0" });
+        }
+        let n = self.u.len();
+        let w = if self.previous_dt > 0.0 && self.previous.len() == n { dt / self.previous_dt } else { 0.0 };
+        self.start.clear();
+        self.start.extend_from_slice(&self.u);
+        self.advance(dt, coupling, closures, Some(w))?;
+        std::mem::swap(&mut self.previous, &mut self.start);
+        self.previous_dt = dt;
+        Ok(())
+    }
+
+    /// One step of backward Euler, or of BDF2 with the step ratio `bdf2`.
+    fn advance(
+        &mut self,
+        dt: f64,
+        coupling: &Coupling<'_>,
+        closures: &Closures<'_>,
+        bdf2: Option<f64>,
+    ) -> Result<(), ColumnError> {
         if dt.is_nan() || dt <= 0.0 {
             return Err(ColumnError::InvalidParameter { name: "dt", value: dt, reason: "must be > 0" });
         }
@@ -284,7 +341,7 @@ impl FluidColumn {
         self.fresh = false;
         self.update_coefficients();
         let t_new = if dt.is_finite() { self.time + dt } else { self.time };
-        self.solve_linear(dt, t_new)?;
+        self.solve_linear(dt, t_new, bdf2)?;
         self.update_derived();
         if let Some(model) = closures.turbulence.as_two_equation() {
             // k and omega with the shear of the new velocity (as the Eulerian solver)
@@ -322,7 +379,7 @@ impl FluidColumn {
             }
             self.eddy.relax_from_previous();
             self.update_coefficients();
-            self.solve_linear(f64::INFINITY, self.time)?;
+            self.solve_linear(f64::INFINITY, self.time, None)?;
             self.update_faces();
             it += 1;
         }
@@ -377,7 +434,7 @@ impl FluidColumn {
             if let Some(done) = self.steady_check(closures, Some(change), tol, it, max_iter)? {
                 return Ok(done);
             }
-            self.solve_linear(f64::INFINITY, self.time)?;
+            self.solve_linear(f64::INFINITY, self.time, None)?;
             self.update_faces();
             let kw = self.kw.as_mut().ok_or(ColumnError::Unsupported { model: closures.turbulence.name() })?;
             kw.col.save();
@@ -544,20 +601,27 @@ impl FluidColumn {
         self.op.conductances(self.params.density, &self.k, &mut self.cond);
     }
 
-    /// Assemble and solve the backward-Euler system for `dt` (infinite: steady).
-    fn solve_linear(&mut self, dt: f64, time: f64) -> Result<(), ColumnError> {
+    /// Assemble and solve the backward-Euler system for `dt` (infinite: steady), or the
+    /// BDF2 one with step ratio `bdf2` (0: backward Euler; u^{n-1} in `previous`).
+    fn solve_linear(&mut self, dt: f64, time: f64, bdf2: Option<f64>) -> Result<(), ColumnError> {
         let n = self.u.len();
         let rho = self.params.density;
         let inv_dt = if dt.is_finite() { 1.0 / dt } else { 0.0 };
         let dz = self.op.grid().dz();
         let t = &mut self.tri;
         for (i, &dzi) in dz.iter().enumerate() {
-            let tm = (1.0 - self.phi[i]) * rho * dzi * inv_dt;
+            let mut tm = (1.0 - self.phi[i]) * rho * dzi * inv_dt;
+            let mut old = self.u[i];
+            if let Some(w) = bdf2.filter(|&w| w > 0.0) {
+                let scale = (1.0 + 2.0 * w) / (1.0 + w);
+                old = ((1.0 + w) * self.u[i] - w * w / (1.0 + w) * self.previous[i]) / scale;
+                tm *= scale;
+            }
             let b = self.beta[i] * dzi;
             t.lower[i] = 0.0;
             t.upper[i] = 0.0;
             t.diag[i] = tm + b;
-            t.rhs[i] = tm * self.u[i] + self.source[i] * dzi + b * self.u_p[i];
+            t.rhs[i] = tm * old + self.source[i] * dzi + b * self.u_p[i];
         }
         // the side walls: a drag towards u = 0
         for ((d, &g), &dzi) in t.diag.iter_mut().zip(&self.wall).zip(dz) {

@@ -1,6 +1,12 @@
 //! Streamwise momentum of both phases (Chassagne et al. 2023 eqs 2.3-2.4): one 2x2
-//! block-tridiagonal backward-Euler solve with the drag implicit, each phase's diffusion
-//! and wall rows assembled by the shared [`crate::column::ColumnOperator`].
+//! block-tridiagonal backward-Euler (or BDF2) solve with the drag implicit, each phase's
+//! diffusion and wall rows assembled by the shared [`crate::column::ColumnOperator`].
+//!
+//! BDF2 with a variable step (ratio w = dt_n / dt_{n-1}) is a backward-Euler row with the
+//! time derivative (1 + 2w)/(1 + w) u^{n+1} - (1 + w) u^n + w^2/(1 + w) u^{n-1} over dt_n
+//! (Hairer & Wanner, Solving ODEs II, section III.5, eq 5.9 for k = 2): the mass term is
+//! scaled and the old velocity replaced by the combination, so that the same assembly
+//! serves both.
 
 use super::block::BlockTridiagonal;
 use super::config::Top;
@@ -27,13 +33,16 @@ impl Band for Phase<'_> {
 }
 
 impl Eulerian<'_> {
-    /// Backward-Euler step of the coupled streamwise momentum of both phases.
-    pub(super) fn solve_momentum(&mut self, dt: f64) -> Result<(), Breakdown> {
+    /// Step `dt` of the coupled streamwise momentum of both phases under the pressure
+    /// gradient `grad` (Pa/m) of the end of the step: backward Euler, or BDF2 with the
+    /// velocities before the last step when `bdf2` gives the ratio of this step to it.
+    pub(super) fn solve_momentum(&mut self, dt: f64, grad: f64, bdf2: Option<f64>) -> Result<(), Breakdown> {
         let n = self.len();
         let c = self.c;
         let inv_dt = 1.0 / dt;
         let dz = self.op.grid().dz();
         let (s, co) = (&self.s, &self.co);
+        let prev = &self.stepping.previous;
         let bl = &mut self.sc.block;
         for i in 0..n {
             let phi = s.phi[i].max(0.0);
@@ -45,14 +54,22 @@ impl Eulerian<'_> {
             let bf = co.beta[i] * dz;
             let bp = phim * eps * co.k_drag[i] * dz;
             let slip = s.uf[i] - s.up[i];
-            let mf = eps * c.rho_f * dz * inv_dt;
-            let mp = phim * c.rho_p * dz * inv_dt;
+            let (mut mf, mut mp) = (eps * c.rho_f * dz * inv_dt, phim * c.rho_p * dz * inv_dt);
+            let (mut old_f, mut old_p) = (s.uf[i], s.up[i]);
+            if let Some(w) = bdf2 {
+                let scale = (1.0 + 2.0 * w) / (1.0 + w);
+                let (a, b) = ((1.0 + w) / scale, w * w / (1.0 + w) / scale);
+                old_f = a * s.uf[i] - b * prev.uf[i];
+                old_p = a * s.up[i] - b * prev.up[i];
+                mf *= scale;
+                mp *= scale;
+            }
             bl.diag[i] = [[mf + tangent * bf, -tangent * bf], [-tangent * bp, mp + tangent * bp]];
             bl.lower[i] = [0.0; 2];
             bl.upper[i] = [0.0; 2];
             bl.rhs[i] = [
-                mf * s.uf[i] + eps * (c.rho_f * c.gx + c.grad) * dz + (tangent - 1.0) * bf * slip,
-                mp * s.up[i] + phim * (c.rho_p * c.gx + c.grad) * dz + co.sigma_face[i + 1]
+                mf * old_f + eps * (c.rho_f * c.gx + grad) * dz + (tangent - 1.0) * bf * slip,
+                mp * old_p + phim * (c.rho_p * c.gx + grad) * dz + co.sigma_face[i + 1]
                     - co.sigma_face[i]
                     - (tangent - 1.0) * bp * slip,
             ];

@@ -31,7 +31,7 @@ pub(super) struct Constants {
     pub d: f64,
     /// g sin(alpha)
     pub gx: f64,
-    /// imposed -dp/dx (Pa/m)
+    /// imposed steady -dp/dx (Pa/m), to which the forcing adds
     pub grad: f64,
     /// (rho_p - rho_f) g cos(alpha)
     pub buoyant_weight: f64,
@@ -53,6 +53,18 @@ pub(super) struct Stepping {
     pub dt: f64,
     /// consecutive steps under the steady tolerance
     pub calm: usize,
+    /// time-accurate stepping: the velocities before the last accepted step and its
+    /// length (s), 0 before the first (that step is then backward Euler)
+    pub previous: Previous,
+}
+
+/// The velocities of both phases one accepted step back, for BDF2.
+#[derive(Default)]
+pub(super) struct Previous {
+    pub uf: Vec<f64>,
+    pub up: Vec<f64>,
+    /// length of the step that followed them (s); 0: none yet
+    pub dt: f64,
 }
 
 /// The Eulerian two-fluid column of Chassagne et al. 2023 section 2.1; see the module
@@ -213,7 +225,8 @@ impl<'a> Eulerian<'a> {
             kw,
             mass0,
         };
-        let stepping = Stepping { dt: cfg.settings.dt_initial.min(cfg.settings.dt_max), calm: 0 };
+        let stepping =
+            Stepping { dt: cfg.settings.dt_initial.min(cfg.settings.dt_max), calm: 0, previous: Previous::default() };
         let mut model = Self {
             scene,
             kernel: DragKernel::new(drag, hindrance),

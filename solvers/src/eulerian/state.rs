@@ -49,6 +49,17 @@ pub(super) struct Saved {
     drift_flux: Vec<f64>,
 }
 
+impl Saved {
+    /// The fluid velocity saved (m/s).
+    pub fn uf(&self) -> &[f64] {
+        &self.uf
+    }
+    /// The particle velocity saved (m/s).
+    pub fn up(&self) -> &[f64] {
+        &self.up
+    }
+}
+
 impl State {
     /// Number of cells.
     pub fn len(&self) -> usize {
@@ -96,8 +107,9 @@ impl State {
     /// phi u_p and phi T relative to their maxima), so that the velocity and temperature of
     /// the vanishing particles of the clear-fluid region, which carry nothing, do not hold
     /// the run away from steady state. The growth aims at phi changes of half
-    /// `max_phi_change` and relative changes of 0.2 per step.
-    pub fn rates(&self, saved: &Saved, dt: f64, kinetic: bool, max_phi_change: f64) -> (f64, f64) {
+    /// `max_phi_change` and relative changes of 0.2 per step; with `phi_only` (time-accurate
+    /// stepping, whose time error is set by the largest step) at the phi changes alone.
+    pub fn rates(&self, saved: &Saved, dt: f64, kinetic: bool, max_phi_change: f64, phi_only: bool) -> (f64, f64) {
         let mut du: f64 = 0.0;
         let mut dq: f64 = 0.0;
         let mut de: f64 = 0.0;
@@ -124,7 +136,8 @@ impl State {
         if kinetic {
             rel = rel.max(de / emax);
         }
-        let target = (0.5 * max_phi_change / dphi.max(1e-300)).min(0.2 / rel.max(1e-300));
+        let by_phi = 0.5 * max_phi_change / dphi.max(1e-300);
+        let target = if phi_only { by_phi } else { by_phi.min(0.2 / rel.max(1e-300)) };
         (rel / dt, target.clamp(0.5, 1.3))
     }
 }

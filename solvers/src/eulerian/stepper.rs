@@ -11,6 +11,8 @@
 
 use std::time::Instant;
 
+use saltus_core::scene::TimeStepping;
+
 use super::{stage, Eulerian};
 use crate::run::{Breakdown, Clock, Ending, Limits, Phase, Progress, Sample, Stepper};
 use crate::RunReport;
@@ -22,7 +24,9 @@ impl Eulerian<'_> {
     fn attempt(&mut self, dt: f64) -> Result<Instant, Breakdown> {
         let t = Instant::now();
         self.s.save(&mut self.saved);
-        self.solve_momentum(dt)?;
+        let grad = self.pressure_gradient(self.s.time + dt);
+        let bdf2 = self.accurate().then_some(self.stepping.previous.dt).filter(|&p| p > 0.0).map(|p| dt / p);
+        self.solve_momentum(dt, grad, bdf2)?;
         let t = self.stages.lap(stage::MOMENTUM, t);
         if self.kinetic {
             self.solve_temperature(dt)?;
@@ -45,10 +49,36 @@ impl Eulerian<'_> {
         r
     }
 
-    /// The run's own ending at the current state, if any: the steady state (the driver
-    /// applies the end time and the step cap).
+    /// The run's own ending at the current state, if any: the steady state, never in
+    /// time-accurate stepping (the driver applies the end time and the step cap).
     fn ending(&self) -> Option<Ending> {
-        (self.stepping.calm >= self.cfg.settings.steady_steps).then_some(Ending::Steady)
+        (!self.accurate() && self.stepping.calm >= self.cfg.settings.steady_steps).then_some(Ending::Steady)
+    }
+
+    /// Whether the momentum is stepped by BDF2 (`solver.eulerian.time_stepping = "accurate"`).
+    pub(super) fn accurate(&self) -> bool {
+        self.cfg.settings.time_stepping == TimeStepping::Accurate
+    }
+
+    /// The pressure gradient -dp/dx at time `t` (Pa/m): the steady one and the forcing's.
+    pub fn pressure_gradient(&self, t: f64) -> f64 {
+        match &self.scene.physics.forcing {
+            Some(f) => self.c.grad + f.gradient(t, self.c.rho_f),
+            None => self.c.grad,
+        }
+    }
+
+    /// Keep the velocities before an accepted step of length `dt` for the next BDF2 step.
+    fn remember(&mut self, dt: f64) {
+        if !self.accurate() {
+            return;
+        }
+        let p = &mut self.stepping.previous;
+        p.uf.clear();
+        p.uf.extend_from_slice(self.saved.uf());
+        p.up.clear();
+        p.up.extend_from_slice(self.saved.up());
+        p.dt = dt;
     }
 }
 
@@ -79,9 +109,10 @@ impl Stepper for Eulerian<'_> {
             let step = dt.min(end_time - self.s.time);
             match self.attempt(step) {
                 Ok(since) => {
+                    self.remember(step);
                     self.s.time += step;
                     self.s.steps += 1;
-                    let (rate, grow) = self.s.rates(&self.saved, step, self.kinetic, max_change);
+                    let (rate, grow) = self.s.rates(&self.saved, step, self.kinetic, max_change, self.accurate());
                     self.s.residual = rate;
                     self.stepping.calm = if rate < tol { self.stepping.calm + 1 } else { 0 };
                     self.stepping.dt = (dt * grow).min(dt_max);

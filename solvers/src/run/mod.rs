@@ -18,6 +18,7 @@ pub mod checkpoint;
 pub mod cpu;
 pub mod history;
 pub mod paraview;
+pub mod phases;
 pub mod timing;
 
 use std::borrow::Cow;
@@ -33,6 +34,7 @@ use crate::output::Profiles;
 use crate::RunReport;
 
 pub use history::Recorder;
+pub use phases::PhaseAverages;
 
 /// Where a run went bad.
 #[derive(Clone, Debug, PartialEq, Serialize)]

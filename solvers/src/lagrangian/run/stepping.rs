@@ -166,11 +166,46 @@ impl Lagrangian<'_> {
         }
     }
 
+    /// The pressure gradient -dp/dx at flow time `t` (Pa/m): the steady one and that of
+    /// `physics.forcing`, if any.
+    pub(crate) fn pressure_gradient(&self, t: f64) -> f64 {
+        let physics = &self.params.scene.physics;
+        match &physics.forcing {
+            Some(f) => physics.pressure_gradient + f.gradient(t, self.params.scene.fluid.density),
+            None => physics.pressure_gradient,
+        }
+    }
+
+    /// The particles' share of a time-dependent forcing: the streamwise body acceleration
+    /// of the DEM step that starts now, with the pressure gradient at its start (the step
+    /// is explicit). Nothing without a forcing.
+    fn apply_forcing(&mut self) {
+        let scene = self.params.scene;
+        if scene.physics.forcing.is_none() {
+            return;
+        }
+        let grad = self.pressure_gradient(self.state.time);
+        let p = &scene.physics;
+        let body = super::setup::body_acceleration(
+            &self.params.cfg,
+            p.gravity,
+            p.slope,
+            scene.fluid.density,
+            scene.particles.density,
+            grad,
+        );
+        self.state.dem.body[0] = body[0];
+    }
+
     /// One fluid update: averages, column solve, field refresh, statistics.
     fn fluid_update(&mut self) -> Result<(), Breakdown> {
         self.average();
         let t0 = Instant::now();
         let tau_f = self.params.cfg.settings.numerics.fluid_period;
+        // the fluid's share of a forcing: the column's backward-Euler step to t + tau_f
+        // takes the pressure gradient of its end
+        let forced =
+            self.params.scene.physics.forcing.is_some().then(|| self.pressure_gradient(self.state.time + tau_f));
         if let Some(col) = self.state.column.as_mut() {
             if let Some(start) = self.params.turbulence.as_two_equation().and_then(|m| m.slip_average_start()) {
                 let law = DampingLaw {
@@ -183,6 +218,15 @@ impl Lagrangian<'_> {
                 let (sums, phi) = (&self.state.sums, &self.state.field.phi);
                 self.state.slip.update(self.state.time, start, sums, col.velocity(), phi, &law);
                 col.set_damping_drag(&self.state.slip.beta);
+            }
+            if let Some(g) = forced {
+                col.set_pressure_gradient(g).map_err(|e| Breakdown {
+                    time: self.state.time,
+                    place: Place::Column,
+                    field: Cow::Borrowed("pressure_gradient"),
+                    value: g,
+                    reason: e.to_string(),
+                })?;
             }
             let coupling = Coupling { phi: &self.state.field.phi, beta: &self.state.beta, u_p: &self.state.u_p };
             let closures = Closures {
@@ -276,6 +320,7 @@ impl Lagrangian<'_> {
             self.state.stats.cooling.add(self.state.time, self.state.dem.p.temperature(), self.params.haff);
         }
         let sampled = update && self.sample_due();
+        self.apply_forcing();
         self.dem_step(update && fluid != FluidMode::Off, sampled && self.state.granular.is_some());
         if update {
             if fluid == FluidMode::Off {
