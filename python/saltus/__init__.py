@@ -167,6 +167,7 @@ def run(
     out: Union[PathLike, None, bool] = None,
     quiet: bool = True,
     restart: Optional[PathLike] = None,
+    closures: Optional[PathLike] = None,
 ) -> Result:
     """Run a scene, as ``saltus run SCENE --set K=V ... --out DIR``.
 
@@ -188,6 +189,10 @@ def run(
             every interrupt and every ``output.checkpoint_interval``): the run continues
             from it, bit-identically to a run that was never stopped, as
             ``saltus run SCENE --restart DIR``.
+        closures: a closures file (``[closures.<family>]`` tables, such as the
+            ``fitted.toml`` of :func:`diagnose` with ``fit=True``) whose tables replace the
+            scene's, family by family, before ``set``; as ``saltus run SCENE --closures
+            FILE``. The resolved scene records it in ``meta.closures_file``.
 
     Returns:
         the :class:`Result` of the last state, written to ``out`` (``profiles.csv``,
@@ -210,14 +215,15 @@ def run(
     scene_path = _path(scene, "scene")
     _closures.import_modules(_native.scene_modules(scene_path, set))  # the scene's [python] modules
     from_dir = None if restart is None else _path(restart, "restart")
+    cl = None if closures is None else _path(closures, "closures")
     if out is False:
         with tempfile.TemporaryDirectory(prefix="saltus-") as tmp:
-            raw = _native.run(scene_path, set, tmp, quiet, from_dir)
+            raw = _native.run(scene_path, set, tmp, quiet, from_dir, cl)
             series, snaps = _study.read_outputs(Path(tmp))
             raw["out"] = None
             raw["figure"] = None
     else:
-        raw = _native.run(scene_path, set, None if out is None else _path(out, "out"), quiet, from_dir)
+        raw = _native.run(scene_path, set, None if out is None else _path(out, "out"), quiet, from_dir, cl)
         series, snaps = _study.read_outputs(Path(raw["out"]))
     interrupt = raw.pop("interrupt")
     result = Result(
@@ -249,18 +255,22 @@ def run(
     return result
 
 
-def check(scene: PathLike, set: Overrides = None, *, toml: bool = False) -> Union[Dict[str, Any], str]:
+def check(
+    scene: PathLike, set: Overrides = None, *, toml: bool = False, closures: Optional[PathLike] = None
+) -> Union[Dict[str, Any], str]:
     """Check a scene as ``saltus check SCENE --set K=V ...``: parse it, fill every default,
     check ranges and closure needs and set up its solver without running it.
 
     Returns the resolved scene (every default filled in, the one ``scene.toml`` of a run
-    holds) as a dict, or as its TOML text with ``toml=True``.
+    holds) as a dict, or as its TOML text with ``toml=True``. ``closures``: a closures
+    file whose tables replace the scene's, as in :func:`run` (refused as ``run`` refuses it).
 
     Raises:
         SceneError: with the command line's message, and ``file`` and ``key`` attributes.
     """
     _closures.import_modules(_native.scene_modules(_path(scene, "scene"), set))  # [python] modules
-    resolved, text = _native.check(_path(scene, "scene"), set)
+    cl = None if closures is None else _path(closures, "closures")
+    resolved, text = _native.check(_path(scene, "scene"), set, cl)
     return text if toml else resolved
 
 

@@ -231,14 +231,15 @@ fn toml_to_py<'py>(py: Python<'py>, v: &toml::Value) -> PyResult<Bound<'py, PyAn
 /// `saltus check`: the scene loaded with the overrides and checked whole, as (dict, TOML
 /// text of the resolved scene).
 #[pyfunction]
-#[pyo3(signature = (scene, set=None))]
+#[pyo3(signature = (scene, set=None, closures=None))]
 fn check<'py>(
     py: Python<'py>,
     scene: PathBuf,
     set: Option<&Bound<'py, PyAny>>,
+    closures: Option<PathBuf>,
 ) -> PyResult<(Bound<'py, PyAny>, String)> {
     let set = overrides(set)?;
-    let s = py.detach(|| runner::load_checked(&scene, &set)).map_err(|e| load_error(py, e))?;
+    let s = py.detach(|| runner::load_checked(&scene, &set, closures.as_deref())).map_err(|e| load_error(py, e))?;
     let text = s.to_toml().map_err(|e| load_error(py, e))?;
     let table: toml::Table = text
         .parse()
@@ -252,7 +253,7 @@ fn check<'py>(
 /// outputs are written and the exception the signal handler raised is returned under
 /// `interrupt`, for the caller to raise.
 #[pyfunction]
-#[pyo3(signature = (scene, set=None, out=None, quiet=true, restart=None))]
+#[pyo3(signature = (scene, set=None, out=None, quiet=true, restart=None, closures=None))]
 fn run<'py>(
     py: Python<'py>,
     scene: PathBuf,
@@ -260,9 +261,12 @@ fn run<'py>(
     out: Option<PathBuf>,
     quiet: bool,
     restart: Option<PathBuf>,
+    closures: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let set = overrides(set)?;
-    let s = py.detach(|| Scene::from_file_with(&scene, &set)).map_err(|e| load_error(py, e))?;
+    let s = py
+        .detach(|| Scene::from_file_with_closures(&scene, &set, closures.as_deref()))
+        .map_err(|e| load_error(py, e))?;
     let out = out.unwrap_or_else(|| runner::default_out(&s));
     let bar =
         if quiet { indicatif::ProgressBar::hidden() } else { runner::progress_bar(std::io::stderr().is_terminal()) };
