@@ -40,6 +40,7 @@ __all__ = [
     "sweep",
     "SweepResult",
     "check",
+    "diagnose",
     "models",
     "Closure",
     "register_closure",
@@ -253,6 +254,65 @@ def run(
             pass
         raise interrupt
     return result
+
+
+def diagnose(
+    run_dir: PathLike,
+    closures: Union[str, Iterable[str], None] = None,
+    *,
+    fit: bool = False,
+    phi_min: float = 0.1,
+    z_min: Optional[float] = None,
+    z_max: Optional[float] = None,
+    out: Optional[PathLike] = None,
+    pool: Iterable[PathLike] = (),
+) -> Dict[str, Any]:
+    """Hold granular closures against a run's averaged fields, as ``saltus diagnose
+    RUN_DIR [--fit] [--closures C]... [--pool DIR]... [--z-min Z --z-max Z]``
+    (docs/diagnostics.md).
+
+    Args:
+        run_dir: the run's output folder (``profiles.csv`` and ``scene.toml``).
+        closures: closures to evaluate instead of the scene's: TOML text or a file, or a
+            list of them (``--closures``).
+        fit: fit the closures' parameters (with standard errors) and write them as closure
+            tables to ``OUT/fitted.toml``, for :func:`run` with ``closures=``.
+        phi_min: only cells with phi above this are used.
+        z_min, z_max: the fits' window of cell centres (m).
+        out: output folder (default ``RUN_DIR/diagnose``).
+        pool: further runs of the same scene (other seeds) whose cells are pooled.
+
+    Returns:
+        a dict: ``text`` (the table the command prints), ``out``, ``files``,
+        ``warnings``, ``fitted`` (the path of ``fitted.toml``, None when no fit was
+        supported or ``fit`` is False) and ``fits`` (None without ``fit``): ``phi_min``,
+        ``z_min``, ``z_max``, ``viscosity`` (why the fluid-phase viscosity exponent is not
+        fitted), and ``closures``, one per closure: ``closure``, ``model``, ``table`` (the
+        fitted closure table), ``unsupported`` and ``quantities``, each with ``quantity``,
+        ``held``, ``kept`` and ``attempts``: the fits tried, full first, each either
+        ``values``, ``stderr``, ``stderr_independent``, ``cells``, ``residual_rms`` or the
+        ``reason`` the cells cannot support it.
+
+    Raises:
+        SceneError: a missing folder or file, a column a comparison needs, a bad
+            ``closures`` value.
+    """
+    if closures is None:
+        cl: List[str] = []
+    elif isinstance(closures, (str, os.PathLike)):
+        cl = [os.fspath(closures)]
+    else:
+        cl = [os.fspath(c) for c in closures]
+    return _native.diagnose(
+        _path(run_dir, "run_dir"),
+        cl,
+        float(phi_min),
+        bool(fit),
+        z_min,
+        z_max,
+        None if out is None else _path(out, "out"),
+        [_path(p, "pool") for p in pool],
+    )
 
 
 def check(

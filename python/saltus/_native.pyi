@@ -33,6 +33,7 @@ def diagnose(
     z_min: Optional[float],
     z_max: Optional[float],
     out: Optional[str],
+    pool: List[str],
 ) -> Dict[str, Any]: ...
 def models(family: Optional[str] = None) -> List[Dict[str, Any]]: ...
 def sweep_prepare(

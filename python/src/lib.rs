@@ -326,6 +326,45 @@ fn run<'py>(
     Ok(d)
 }
 
+/// `saltus diagnose`: the closures held against the run(s) in `dir` (and `pool`), the
+/// files written into `out` (default `dir/diagnose`), and with `fit` the fits, as a dict:
+/// `text` (the printed table), `out`, `files`, `warnings`, `fits` (see
+/// `saltus::diagnose::Diagnosis::fits_json`), `fitted` (the fitted.toml written, or None).
+#[pyfunction]
+#[pyo3(signature = (dir, closures, phi_min, fit, z_min, z_max, out, pool))]
+#[allow(clippy::too_many_arguments)]
+fn diagnose<'py>(
+    py: Python<'py>,
+    dir: PathBuf,
+    closures: Vec<String>,
+    phi_min: f64,
+    fit: bool,
+    z_min: Option<f64>,
+    z_max: Option<f64>,
+    out: Option<PathBuf>,
+    pool: Vec<PathBuf>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let opts = saltus::diagnose::Options { phi_min, fit, window: saltus::diagnose::Window { z_min, z_max } };
+    let dirs: Vec<PathBuf> = std::iter::once(dir.clone()).chain(pool).collect();
+    let out = out.unwrap_or_else(|| dir.join("diagnose"));
+    let done = py.detach(|| -> anyhow::Result<_> {
+        let d = saltus::diagnose::diagnose_pooled(&dirs, &closures, opts)?;
+        let written = d.write(&out)?;
+        Ok((d, written))
+    });
+    let (d, written) = done.map_err(|e| SceneError::new_err(format!("{e:#}")))?;
+    let fitted = out.join(saltus::diagnose::FITTED);
+    let value = serde_json::json!({
+        "text": d.text(),
+        "out": out.display().to_string(),
+        "files": written.files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
+        "warnings": written.warnings,
+        "fits": if fit { d.fits_json() } else { serde_json::Value::Null },
+        "fitted": written.files.contains(&fitted).then(|| fitted.display().to_string()),
+    });
+    json_to_py(py, &value)
+}
+
 /// `saltus models --json`: every registered model (of one family when given).
 #[pyfunction]
 #[pyo3(signature = (family=None))]
@@ -460,6 +499,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(models, m)?)?;
+    m.add_function(wrap_pyfunction!(diagnose, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_prepare, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_collect, m)?)?;
     m.add_class::<Closure>()?;

@@ -106,7 +106,7 @@ pub fn fit(
         jacobian(&p, &r, &mut residuals).ok_or("the closure's derivative is not defined at the fitted parameters")?;
     let (a, _) = normal_equations(&j, &r, m);
     let diag: Vec<f64> = (0..m).map(|i| a[i * m + i]).collect();
-    if let Some(i) = diag.iter().position(|d| !(*d > 0.0)) {
+    if let Some(i) = diag.iter().position(|d| d.is_nan() || *d <= 0.0) {
         return Err(format!("singular regression: the cells do not depend on `{}`", names[i]));
     }
     // the correlation form of J^T J: unit diagonal, so its conditioning is the parameters'
@@ -115,7 +115,7 @@ pub fn fit(
     for i in 0..m {
         for k in (i + 1)..m {
             let c = inv[i * m + k] / (inv[i * m + i] * inv[k * m + k]).sqrt();
-            if !(c.abs() < MAX_CORRELATION) {
+            if c.is_nan() || c.abs() >= MAX_CORRELATION {
                 return Err(format!(
                     "singular regression: `{}` and `{}` are not separately determined by these cells (correlation {c:.4})",
                     names[i], names[k]
@@ -179,14 +179,16 @@ fn solve(a: &[f64], b: &[f64], m: usize) -> Option<Vec<f64>> {
     let scale = a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
     for c in 0..m {
         let piv = (c..m).max_by(|&x, &y| aug[x][c].abs().total_cmp(&aug[y][c].abs()))?;
-        if !(aug[piv][c].abs() > 1e-13 * scale) {
+        let pivot = aug[piv][c].abs();
+        if pivot.is_nan() || pivot <= 1e-13 * scale {
             return None;
         }
         aug.swap(c, piv);
         for rr in (c + 1)..m {
             let f = aug[rr][c] / aug[c][c];
-            for k in c..=m {
-                aug[rr][k] -= f * aug[c][k];
+            let (top, bottom) = aug.split_at_mut(rr);
+            for (x, y) in bottom[0][c..].iter_mut().zip(&top[c][c..]) {
+                *x -= f * y;
             }
         }
     }

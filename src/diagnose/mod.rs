@@ -370,6 +370,55 @@ impl Diagnosis {
         s
     }
 
+    /// The fits as JSON (the Python `saltus.diagnose`): per closure, per quantity, each
+    /// fit tried with its parameters and either its values, standard errors, cells and
+    /// residual RMS, or the reason the cells cannot support it; undefined numbers are null.
+    pub fn fits_json(&self) -> serde_json::Value {
+        use serde_json::json;
+        let num = |x: f64| if x.is_finite() { json!(x) } else { serde_json::Value::Null };
+        let nums = |v: &[f64]| v.iter().map(|x| num(*x)).collect::<Vec<_>>();
+        let closures: Vec<_> = self
+            .closures
+            .iter()
+            .filter_map(|cd| cd.fit.as_ref())
+            .map(|f| {
+                let quantities: Vec<_> = f
+                    .quantities
+                    .iter()
+                    .map(|q| {
+                        let attempts: Vec<_> = q
+                            .attempts
+                            .iter()
+                            .map(|a| match &a.result {
+                                Ok(s) => json!({
+                                    "params": a.params, "values": nums(&s.params), "stderr": nums(&s.stderr),
+                                    "stderr_independent": nums(&s.stderr_independent), "cells": s.cells,
+                                    "residual_rms": num(s.rms), "residual_lag1": num(s.r1),
+                                }),
+                                Err(reason) => json!({ "params": a.params, "reason": reason }),
+                            })
+                            .collect();
+                        json!({
+                            "quantity": q.quantity, "control": q.control, "held": q.held(),
+                            "kept": q.kept().is_some(), "x_range": nums(&[q.x_range.0, q.x_range.1]),
+                            "z_range": nums(&[q.z_range.0, q.z_range.1]), "attempts": attempts,
+                        })
+                    })
+                    .collect();
+                let unsupported: Vec<_> =
+                    f.unsupported.iter().map(|(q, r)| json!({ "quantity": q, "reason": r })).collect();
+                json!({
+                    "closure": f.label, "model": f.model, "quantities": quantities, "unsupported": unsupported,
+                    "table": f.table.as_ref().map(|t| serde_json::to_value(t).unwrap_or(serde_json::Value::Null)),
+                })
+            })
+            .collect();
+        json!({
+            "phi_min": self.phi_min, "z_min": self.window.z_min, "z_max": self.window.z_max,
+            "closures": closures, "viscosity": self.viscosity_fit,
+        })
+    }
+
     /// The fits' part of the printed table.
     fn fit_text(&self, fits: &[&ClosureFit]) -> String {
         use comparison::figure;
