@@ -2,7 +2,7 @@
 //! run's averaged fields over a window of cells, and written as closure tables
 //! (`fitted.toml`) that `saltus run --closures` takes.
 //!
-//! Each quantity is fitted by least squares ([`least_squares`](super::least_squares)) of
+//! Each quantity is fitted by least squares ([`least_squares`]) of
 //! the closure's own prediction against the measured values of the cells its comparison
 //! uses: mu(X) for (mu_s, mu_2, I0) of `mu_i` and (mu_1, mu_2, sqrt(K0)) of `mu_k`,
 //! phi(X) for (phi_c, b), and the relative regression of eq 3.2 for a of
