@@ -173,3 +173,35 @@ fn a_closures_file_with_an_unknown_family_or_key_is_refused_naming_both() {
     let text = stdout(&o);
     assert!(text.contains("mu_s = 0.3") && text.contains("closures_file = "), "{text}");
 }
+
+/// An Eulerian run's fields hold its own closure exactly (docs/diagnostics.md, "The
+/// Eulerian solver's fields"), so `--fit` must give that closure's parameters back through
+/// profiles.csv (11 significant digits): Fry's Couette bedload with mu_k (mu_1 = 0.23,
+/// mu_2 = 0.75, sqrt(K0) = 0.18 over K = 1e-7 - 40) and Chassagne's case 1 with the
+/// proposed kinetic closure (a of eq 3.2 = eq 3.3 at mu_p = 0.4: 0.58 + 3.12 tanh(0.4 /
+/// 0.54) = 2.5443), each within 1e-6 relative.
+#[test]
+fn a_fit_on_an_eulerian_run_gives_its_own_closure_back() {
+    let dir = tmp_dir("fit_own_closure");
+    let cases: [(&str, &[&str], &[(&str, f64)]); 2] = [
+        ("cases/fry2024/couette_bedload.toml", &[], &[("mu_1", 0.23), ("mu_2", 0.75), ("sqrt_k0", 0.18)]),
+        (CASE01, &["--set", "domain.cells=60"], &[("a", 0.58 + (3.70 - 0.58) * (0.4f64 / 0.54).tanh())]),
+    ];
+    for (k, (scene, set, expected)) in cases.iter().enumerate() {
+        let out = dir.join(format!("run{k}"));
+        let mut args = vec!["run", scene];
+        args.extend(*set);
+        args.extend(["--out", out.to_str().unwrap(), "-q"]);
+        let o = saltus(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let o = saltus(&["diagnose", out.to_str().unwrap(), "--fit"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let doc: toml::Table =
+            std::fs::read_to_string(out.join("diagnose").join("fitted.toml")).unwrap().parse().unwrap();
+        let g = &doc["closures"]["granular"];
+        for (name, want) in *expected {
+            let got = if *name == "a" { g["g0"]["a"].as_float() } else { g[*name].as_float() }.unwrap();
+            assert!((got / want - 1.0).abs() < 1e-6, "{scene}: {name} = {got}, expected {want}");
+        }
+    }
+}
