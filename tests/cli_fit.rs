@@ -183,7 +183,8 @@ fn a_closures_file_with_an_unknown_family_or_key_is_refused_naming_both() {
 #[test]
 fn a_fit_on_an_eulerian_run_gives_its_own_closure_back() {
     let dir = tmp_dir("fit_own_closure");
-    let cases: [(&str, &[&str], &[(&str, f64)]); 2] = [
+    type Case<'a> = (&'a str, &'a [&'a str], &'a [(&'a str, f64)]);
+    let cases: [Case; 2] = [
         ("cases/fry2024/couette_bedload.toml", &[], &[("mu_1", 0.23), ("mu_2", 0.75), ("sqrt_k0", 0.18)]),
         (CASE01, &["--set", "domain.cells=60"], &[("a", 0.58 + (3.70 - 0.58) * (0.4f64 / 0.54).tanh())]),
     ];
