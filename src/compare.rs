@@ -76,6 +76,10 @@ pub struct Variant {
     /// `KEY=VALUE` overrides, as `saltus run --set`
     #[serde(default)]
     pub set: Vec<String>,
+    /// closures file whose `[closures.<family>]` tables replace the base scene's, as
+    /// `saltus run --closures` (relative to the compare file), before the overrides
+    #[serde(default)]
+    pub closures: Option<PathBuf>,
 }
 
 /// A loaded and checked compare file.
@@ -144,7 +148,17 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Comparison> {
     if let Some(r) = &raw.reference {
         check_reference(path, r, &raw.variants)?;
     }
-    let base = path.parent().unwrap_or(Path::new("")).join(&raw.base);
+    let folder = path.parent().unwrap_or(Path::new(""));
+    let mut variants = raw.variants;
+    for (i, v) in variants.iter_mut().enumerate() {
+        if let Some(c) = v.closures.take() {
+            let file = folder.join(&c);
+            saltus_core::scene::closures_file_tables(&file)
+                .map_err(|e| key_error(path, format!("variant[{i}].closures"), format!("{e}")))?;
+            v.closures = Some(file);
+        }
+    }
+    let base = folder.join(&raw.base);
     if !base.is_file() {
         return Err(key_error(path, "base", format!("`{}`: no such scene file ({})", raw.base, base.display())));
     }
@@ -154,14 +168,7 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Comparison> {
     if meta.name.is_empty() {
         meta.name = path.file_stem().map_or_else(|| "comparison".into(), |s| s.to_string_lossy().into_owned());
     }
-    Ok(Comparison {
-        file: path.to_path_buf(),
-        base,
-        meta,
-        variants: raw.variants,
-        set: set.to_vec(),
-        reference: raw.reference,
-    })
+    Ok(Comparison { file: path.to_path_buf(), base, meta, variants, set: set.to_vec(), reference: raw.reference })
 }
 
 /// A `[reference]` names a variant of the file, or the data, or a finite positive qs*.
@@ -477,7 +484,7 @@ fn run_variant(cmp: &Comparison, v: &Variant, out: &Path, bars: &MultiProgress) 
         VariantRun { name: v.name.clone(), dir: dir.clone(), report: None, error: None, warnings: Vec::new() };
     let sets: Vec<String> = cmp.set.iter().chain(&v.set).cloned().collect();
     // the same checks as `saltus check` and `saltus run`, before any work
-    let mut scene = match Scene::from_file_with(&cmp.base, &sets) {
+    let mut scene = match Scene::from_file_with_closures(&cmp.base, &sets, v.closures.as_deref()) {
         Ok(s) => s,
         Err(e) => {
             run.error = Some(format!("{e}"));

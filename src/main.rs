@@ -36,6 +36,11 @@ enum Command {
         /// --set 'closures.drag={type="stokes"}'
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// replace the scene's [closures.<family>] tables by those of FILE (a
+        /// [closures] document such as the `fitted.toml` of `saltus diagnose --fit`;
+        /// its [fit] table is metadata), before the --set overrides
+        #[arg(long = "closures", value_name = "FILE")]
+        closures: Option<PathBuf>,
     },
     /// Run a scene with its solver and write its outputs.
     #[command(after_help = EXIT_CODES)]
@@ -45,6 +50,11 @@ enum Command {
         /// override one key (repeatable)
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// replace the scene's [closures.<family>] tables by those of FILE (a
+        /// [closures] document such as the `fitted.toml` of `saltus diagnose --fit`;
+        /// its [fit] table is metadata), before the --set overrides
+        #[arg(long = "closures", value_name = "FILE")]
+        closures: Option<PathBuf>,
         /// output folder (default: the --restart folder, else the scene's output.dir, else
         /// out/<scene name>); a folder where the run would write over its scene file or a
         /// reference file is refused
@@ -138,6 +148,20 @@ enum Command {
         /// only cells with phi above this are used
         #[arg(long, default_value_t = saltus::diagnose::PHI_MIN)]
         phi_min: f64,
+        /// fit the closures' parameters to the run (with standard errors) and write them
+        /// as closure tables to OUT/fitted.toml, for `saltus run --closures`
+        #[arg(long)]
+        fit: bool,
+        /// pool the cells of another run of the same scene (another seed) with DIR's in the
+        /// comparisons and fits (repeatable)
+        #[arg(long, value_name = "RUN_DIR")]
+        pool: Vec<PathBuf>,
+        /// fits only: lowest cell centre used (m)
+        #[arg(long, value_name = "METRES", requires = "fit")]
+        z_min: Option<f64>,
+        /// fits only: highest cell centre used (m)
+        #[arg(long, value_name = "METRES", requires = "fit")]
+        z_max: Option<f64>,
     },
     /// Evaluate or plot closures on their own.
     Closure {
@@ -268,12 +292,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 out!("{}", saltus::listing::text(family));
             }
         }
-        Command::Check { scene, set } => {
-            let s = saltus::runner::load_checked(&scene, &set)?;
+        Command::Check { scene, set, closures } => {
+            let s = saltus::runner::load_checked(&scene, &set, closures.as_deref())?;
             outln!("# {} resolved: every default filled in, ranges and closure needs checked", scene.display());
             out!("{}", s.to_toml()?);
         }
-        Command::Run { scene, set, out, restart, max_wall, log_interval, quiet, json } => {
+        Command::Run { scene, set, closures, out, restart, max_wall, log_interval, quiet, json } => {
             if !(log_interval.is_finite() && log_interval > 0.0 && log_interval <= 1e9) {
                 anyhow::bail!("--log-interval {log_interval}: must be a number of seconds in (0, 1e9]");
             }
@@ -282,7 +306,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
             // the solver's set-up inside `run` is `validate` (`resolve`), refused before
             // any output is written: loading the schema is all that is left to do here
-            let s = Scene::from_file_with(&scene, &set)?;
+            let s = Scene::from_file_with_closures(&scene, &set, closures.as_deref())?;
             // a continued run goes on in the folder it continues, unless told otherwise
             let out = out
                 .or_else(|| restart.as_deref().map(saltus_solvers::run::checkpoint::folder))
@@ -424,8 +448,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 );
             }
         }
-        Command::Diagnose { dir, closures, out, phi_min } => {
-            let d = saltus::diagnose::diagnose(&dir, &closures, saltus::diagnose::Options { phi_min })?;
+        Command::Diagnose { dir, closures, out, phi_min, fit, pool, z_min, z_max } => {
+            let window = saltus::diagnose::Window { z_min, z_max };
+            let dirs: Vec<PathBuf> = std::iter::once(dir.clone()).chain(pool).collect();
+            let opts = saltus::diagnose::Options { phi_min, fit, window };
+            let d = saltus::diagnose::diagnose_pooled(&dirs, &closures, opts)?;
             let out = out.unwrap_or_else(|| dir.join("diagnose"));
             let written = d.write(&out)?;
             for w in &written.warnings {

@@ -214,8 +214,9 @@ fn eta(p: &Progress, phase_wall: f64) -> Option<f64> {
 /// Load a scene and check it whole: the schema with the `--set KEY=VALUE` overrides
 /// applied, then what its solver needs to start (the set-up a run does before any work).
 /// `saltus check` and the Python `saltus.check` call it, so they refuse what `run` would.
-pub fn load_checked(scene: &Path, set: &[String]) -> Result<Scene, saltus_core::Error> {
-    let s = Scene::from_file_with(scene, set)?;
+/// `closures`: a closures file whose tables replace the scene's (`--closures FILE`).
+pub fn load_checked(scene: &Path, set: &[String], closures: Option<&Path>) -> Result<Scene, saltus_core::Error> {
+    let s = Scene::from_file_with_closures(scene, set, closures)?;
     saltus_solvers::validate(&s)?;
     // a closure registered at run time that failed while the solver was being set up
     match s.closures.failure() {

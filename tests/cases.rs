@@ -28,8 +28,14 @@ fn toml_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// The scene files: every `.toml` under `cases/` except `cases/closures/` and comparison
-/// files (top-level `base` key).
+/// Whether the TOML file holds closures files' keys only (`[closures]`, `[fit]`: the
+/// `fitted.toml` of `saltus diagnose --fit`), not a scene.
+fn is_closures_file(table: &toml::Table) -> bool {
+    table.keys().all(|k| saltus_core::scene::CLOSURES_FILE_KEYS.contains(&k.as_str()))
+}
+
+/// The scene files: every `.toml` under `cases/` except `cases/closures/`, comparison
+/// files (top-level `base` key) and closures files.
 fn scene_files() -> Vec<PathBuf> {
     let root = cases_dir();
     let mut all = Vec::new();
@@ -40,9 +46,33 @@ fn scene_files() -> Vec<PathBuf> {
         .filter(|p| {
             let text = std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
             let table: toml::Table = text.parse().unwrap_or_else(|e| panic!("{}: {e}", p.display()));
-            !table.contains_key("base")
+            !table.contains_key("base") && !is_closures_file(&table)
         })
         .collect()
+}
+
+/// Every closures file under `cases/` replaces the closures of the dry incline's scene
+/// run by the Eulerian solver, as `saltus run --closures` does.
+#[test]
+fn every_closures_file_loads_over_a_scene() {
+    saltus_closures::link();
+    let root = cases_dir();
+    let mut all = Vec::new();
+    toml_files(&root, &mut all);
+    let mut n = 0;
+    for p in all.iter().filter(|p| !p.starts_with(root.join("closures"))) {
+        let table: toml::Table = std::fs::read_to_string(p).unwrap().parse().unwrap();
+        if !is_closures_file(&table) {
+            continue;
+        }
+        let scene = root.join("granular/dry_incline.toml");
+        let set = ["solver.type=eulerian".to_string(), "domain.bed_phi=0.55".to_string()];
+        let s =
+            Scene::from_file_with_closures(&scene, &set, Some(p)).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+        assert!(s.meta.closures_file.is_some(), "{}", p.display());
+        n += 1;
+    }
+    assert!(n >= 1, "no closures file under cases/");
 }
 
 fn solver_type(scene: &Scene) -> Option<String> {

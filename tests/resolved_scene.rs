@@ -85,14 +85,14 @@ fn check_accepts_the_resolved_scene_it_prints_and_resolves_it_to_the_same_text()
     let accepted = std::cell::Cell::new(0u32);
     let dem = std::cell::Cell::new(0u32);
     let result = runner.run(&overrides(), |set| {
-        let Ok(scene) = saltus::runner::load_checked(&base, &set) else { return Ok(()) };
+        let Ok(scene) = saltus::runner::load_checked(&base, &set, None) else { return Ok(()) };
         accepted.set(accepted.get() + 1);
         if scene.solver.kind == saltus_core::scene::SolverKind::Lagrangian {
             dem.set(dem.get() + 1);
         }
         let text = scene.to_toml().map_err(|e| TestCaseError::fail(e.to_string()))?;
         std::fs::write(&resolved, &text).unwrap();
-        let again = saltus::runner::load_checked(&resolved, &[])
+        let again = saltus::runner::load_checked(&resolved, &[], None)
             .map_err(|e| TestCaseError::fail(format!("{set:?}: the resolved scene is refused: {e}\n{text}")))?;
         let text_again = again.to_toml().map_err(|e| TestCaseError::fail(e.to_string()))?;
         prop_assert_eq!(&text_again, &text, "{:?}: resolved to another text", set);

@@ -42,6 +42,7 @@ __all__ = [
     "sweep",
     "SweepResult",
     "check",
+    "diagnose",
     "models",
     "Closure",
     "register_closure",
@@ -169,6 +170,7 @@ def run(
     out: Union[PathLike, None, bool] = None,
     quiet: bool = True,
     restart: Optional[PathLike] = None,
+    closures: Optional[PathLike] = None,
 ) -> Result:
     """Run a scene, as ``saltus run SCENE --set K=V ... --out DIR``.
 
@@ -190,6 +192,10 @@ def run(
             every interrupt and every ``output.checkpoint_interval``): the run continues
             from it, bit-identically to a run that was never stopped, as
             ``saltus run SCENE --restart DIR``.
+        closures: a closures file (``[closures.<family>]`` tables, such as the
+            ``fitted.toml`` of :func:`diagnose` with ``fit=True``) whose tables replace the
+            scene's, family by family, before ``set``; as ``saltus run SCENE --closures
+            FILE``. The resolved scene records it in ``meta.closures_file``.
 
     Returns:
         the :class:`Result` of the last state, written to ``out`` (``profiles.csv``,
@@ -212,14 +218,15 @@ def run(
     scene_path = _path(scene, "scene")
     _closures.import_modules(_native.scene_modules(scene_path, set))  # the scene's [python] modules
     from_dir = None if restart is None else _path(restart, "restart")
+    cl = None if closures is None else _path(closures, "closures")
     if out is False:
         with tempfile.TemporaryDirectory(prefix="saltus-") as tmp:
-            raw = _native.run(scene_path, set, tmp, quiet, from_dir)
+            raw = _native.run(scene_path, set, tmp, quiet, from_dir, cl)
             series, snaps = _study.read_outputs(Path(tmp))
             raw["out"] = None
             raw["figure"] = None
     else:
-        raw = _native.run(scene_path, set, None if out is None else _path(out, "out"), quiet, from_dir)
+        raw = _native.run(scene_path, set, None if out is None else _path(out, "out"), quiet, from_dir, cl)
         series, snaps = _study.read_outputs(Path(raw["out"]))
     interrupt = raw.pop("interrupt")
     result = Result(
@@ -251,18 +258,81 @@ def run(
     return result
 
 
-def check(scene: PathLike, set: Overrides = None, *, toml: bool = False) -> Union[Dict[str, Any], str]:
+def diagnose(
+    run_dir: PathLike,
+    closures: Union[str, Iterable[str], None] = None,
+    *,
+    fit: bool = False,
+    phi_min: float = 0.1,
+    z_min: Optional[float] = None,
+    z_max: Optional[float] = None,
+    out: Optional[PathLike] = None,
+    pool: Iterable[PathLike] = (),
+) -> Dict[str, Any]:
+    """Hold granular closures against a run's averaged fields, as ``saltus diagnose
+    RUN_DIR [--fit] [--closures C]... [--pool DIR]... [--z-min Z --z-max Z]``
+    (docs/diagnostics.md).
+
+    Args:
+        run_dir: the run's output folder (``profiles.csv`` and ``scene.toml``).
+        closures: closures to evaluate instead of the scene's: TOML text or a file, or a
+            list of them (``--closures``).
+        fit: fit the closures' parameters (with standard errors) and write them as closure
+            tables to ``OUT/fitted.toml``, for :func:`run` with ``closures=``.
+        phi_min: only cells with phi above this are used.
+        z_min, z_max: the fits' window of cell centres (m).
+        out: output folder (default ``RUN_DIR/diagnose``).
+        pool: further runs of the same scene (other seeds) whose cells are pooled.
+
+    Returns:
+        a dict: ``text`` (the table the command prints), ``out``, ``files``,
+        ``warnings``, ``fitted`` (the path of ``fitted.toml``, None when no fit was
+        supported or ``fit`` is False) and ``fits`` (None without ``fit``): ``phi_min``,
+        ``z_min``, ``z_max``, ``viscosity`` (why the fluid-phase viscosity exponent is not
+        fitted), and ``closures``, one per closure: ``closure``, ``model``, ``table`` (the
+        fitted closure table), ``unsupported`` and ``quantities``, each with ``quantity``,
+        ``held``, ``kept`` and ``attempts``: the fits tried, full first, each either
+        ``values``, ``stderr``, ``stderr_independent``, ``cells``, ``residual_rms`` or the
+        ``reason`` the cells cannot support it.
+
+    Raises:
+        SceneError: a missing folder or file, a column a comparison needs, a bad
+            ``closures`` value.
+    """
+    if closures is None:
+        cl: List[str] = []
+    elif isinstance(closures, (str, os.PathLike)):
+        cl = [os.fspath(closures)]
+    else:
+        cl = [os.fspath(c) for c in closures]
+    return _native.diagnose(
+        _path(run_dir, "run_dir"),
+        cl,
+        float(phi_min),
+        bool(fit),
+        z_min,
+        z_max,
+        None if out is None else _path(out, "out"),
+        [_path(p, "pool") for p in pool],
+    )
+
+
+def check(
+    scene: PathLike, set: Overrides = None, *, toml: bool = False, closures: Optional[PathLike] = None
+) -> Union[Dict[str, Any], str]:
     """Check a scene as ``saltus check SCENE --set K=V ...``: parse it, fill every default,
     check ranges and closure needs and set up its solver without running it.
 
     Returns the resolved scene (every default filled in, the one ``scene.toml`` of a run
-    holds) as a dict, or as its TOML text with ``toml=True``.
+    holds) as a dict, or as its TOML text with ``toml=True``. ``closures``: a closures
+    file whose tables replace the scene's, as in :func:`run` (refused as ``run`` refuses it).
 
     Raises:
         SceneError: with the command line's message, and ``file`` and ``key`` attributes.
     """
     _closures.import_modules(_native.scene_modules(_path(scene, "scene"), set))  # [python] modules
-    resolved, text = _native.check(_path(scene, "scene"), set)
+    cl = None if closures is None else _path(closures, "closures")
+    resolved, text = _native.check(_path(scene, "scene"), set, cl)
     return text if toml else resolved
 
 

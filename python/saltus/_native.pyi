@@ -16,9 +16,24 @@ class RunError(RuntimeError):
 
 _Overrides = Union[Mapping[str, Any], Iterable[str], None]
 
-def check(scene: str, set: _Overrides = None) -> Tuple[Dict[str, Any], str]: ...
+def check(scene: str, set: _Overrides = None, closures: Optional[str] = None) -> Tuple[Dict[str, Any], str]: ...
 def run(
-    scene: str, set: _Overrides = None, out: Optional[str] = None, quiet: bool = True, restart: Optional[str] = None
+    scene: str,
+    set: _Overrides = None,
+    out: Optional[str] = None,
+    quiet: bool = True,
+    restart: Optional[str] = None,
+    closures: Optional[str] = None,
+) -> Dict[str, Any]: ...
+def diagnose(
+    dir: str,
+    closures: List[str],
+    phi_min: float,
+    fit: bool,
+    z_min: Optional[float],
+    z_max: Optional[float],
+    out: Optional[str],
+    pool: List[str],
 ) -> Dict[str, Any]: ...
 def models(family: Optional[str] = None) -> List[Dict[str, Any]]: ...
 def compare(file: str, set: _Overrides = None, out: Optional[str] = None) -> Dict[str, Any]: ...

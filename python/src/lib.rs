@@ -231,14 +231,15 @@ fn toml_to_py<'py>(py: Python<'py>, v: &toml::Value) -> PyResult<Bound<'py, PyAn
 /// `saltus check`: the scene loaded with the overrides and checked whole, as (dict, TOML
 /// text of the resolved scene).
 #[pyfunction]
-#[pyo3(signature = (scene, set=None))]
+#[pyo3(signature = (scene, set=None, closures=None))]
 fn check<'py>(
     py: Python<'py>,
     scene: PathBuf,
     set: Option<&Bound<'py, PyAny>>,
+    closures: Option<PathBuf>,
 ) -> PyResult<(Bound<'py, PyAny>, String)> {
     let set = overrides(set)?;
-    let s = py.detach(|| runner::load_checked(&scene, &set)).map_err(|e| load_error(py, e))?;
+    let s = py.detach(|| runner::load_checked(&scene, &set, closures.as_deref())).map_err(|e| load_error(py, e))?;
     let text = s.to_toml().map_err(|e| load_error(py, e))?;
     let table: toml::Table = text
         .parse()
@@ -252,7 +253,7 @@ fn check<'py>(
 /// outputs are written and the exception the signal handler raised is returned under
 /// `interrupt`, for the caller to raise.
 #[pyfunction]
-#[pyo3(signature = (scene, set=None, out=None, quiet=true, restart=None))]
+#[pyo3(signature = (scene, set=None, out=None, quiet=true, restart=None, closures=None))]
 fn run<'py>(
     py: Python<'py>,
     scene: PathBuf,
@@ -260,9 +261,12 @@ fn run<'py>(
     out: Option<PathBuf>,
     quiet: bool,
     restart: Option<PathBuf>,
+    closures: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let set = overrides(set)?;
-    let s = py.detach(|| Scene::from_file_with(&scene, &set)).map_err(|e| load_error(py, e))?;
+    let s = py
+        .detach(|| Scene::from_file_with_closures(&scene, &set, closures.as_deref()))
+        .map_err(|e| load_error(py, e))?;
     let out = out.unwrap_or_else(|| runner::default_out(&s));
     let bar =
         if quiet { indicatif::ProgressBar::hidden() } else { runner::progress_bar(std::io::stderr().is_terminal()) };
@@ -348,6 +352,45 @@ fn compare<'py>(
     d.set_item("failures", report.failures())?;
     d.set_item("warnings", &report.warnings)?;
     Ok(d)
+}
+
+/// `saltus diagnose`: the closures held against the run(s) in `dir` (and `pool`), the
+/// files written into `out` (default `dir/diagnose`), and with `fit` the fits, as a dict:
+/// `text` (the printed table), `out`, `files`, `warnings`, `fits` (see
+/// `saltus::diagnose::Diagnosis::fits_json`), `fitted` (the fitted.toml written, or None).
+#[pyfunction]
+#[pyo3(signature = (dir, closures, phi_min, fit, z_min, z_max, out, pool))]
+#[allow(clippy::too_many_arguments)]
+fn diagnose<'py>(
+    py: Python<'py>,
+    dir: PathBuf,
+    closures: Vec<String>,
+    phi_min: f64,
+    fit: bool,
+    z_min: Option<f64>,
+    z_max: Option<f64>,
+    out: Option<PathBuf>,
+    pool: Vec<PathBuf>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let opts = saltus::diagnose::Options { phi_min, fit, window: saltus::diagnose::Window { z_min, z_max } };
+    let dirs: Vec<PathBuf> = std::iter::once(dir.clone()).chain(pool).collect();
+    let out = out.unwrap_or_else(|| dir.join("diagnose"));
+    let done = py.detach(|| -> anyhow::Result<_> {
+        let d = saltus::diagnose::diagnose_pooled(&dirs, &closures, opts)?;
+        let written = d.write(&out)?;
+        Ok((d, written))
+    });
+    let (d, written) = done.map_err(|e| SceneError::new_err(format!("{e:#}")))?;
+    let fitted = out.join(saltus::diagnose::FITTED);
+    let value = serde_json::json!({
+        "text": d.text(),
+        "out": out.display().to_string(),
+        "files": written.files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
+        "warnings": written.warnings,
+        "fits": if fit { d.fits_json() } else { serde_json::Value::Null },
+        "fitted": written.files.contains(&fitted).then(|| fitted.display().to_string()),
+    });
+    json_to_py(py, &value)
 }
 
 /// `saltus models --json`: every registered model (of one family when given).
@@ -485,6 +528,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(compare, m)?)?;
     m.add_function(wrap_pyfunction!(models, m)?)?;
+    m.add_function(wrap_pyfunction!(diagnose, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_prepare, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_collect, m)?)?;
     m.add_class::<Closure>()?;

@@ -64,6 +64,21 @@ impl Comparison {
         true
     }
 
+    /// Add the cells of `other` (the same comparison on another run) after these; the
+    /// extra columns are kept where both have them.
+    pub fn append(&mut self, other: &Comparison) {
+        self.z.extend(&other.z);
+        self.x.extend(&other.x);
+        self.measured.extend(&other.measured);
+        self.predicted.extend(&other.predicted);
+        for (name, v) in &mut self.extra {
+            match other.extra.iter().find(|(n, _)| n == name) {
+                Some((_, w)) => v.extend(w),
+                None => v.resize(self.z.len(), f64::NAN),
+            }
+        }
+    }
+
     /// Number of cells compared.
     pub fn cells(&self) -> usize {
         self.z.len()

@@ -8,7 +8,9 @@
 pub mod closures;
 pub mod comparison;
 pub mod fields;
+pub mod fit;
 pub mod kinetic;
+pub mod least_squares;
 pub mod local;
 
 use std::path::{Path, PathBuf};
@@ -17,6 +19,7 @@ use anyhow::bail;
 
 pub use comparison::Comparison;
 pub use fields::RunFields;
+pub use fit::{ClosureFit, QuantityFit, Window};
 pub use kinetic::{BandFit, G0Fit, G0_FIT_BANDS};
 
 /// Default lowest volume fraction of a usable cell: below it the averages of a DEM
@@ -30,13 +33,20 @@ pub const PHI_MIN: f64 = 0.1;
 pub struct Options {
     /// cells with phi <= this are not used
     pub phi_min: f64,
+    /// fit the closures' parameters (`--fit`)
+    pub fit: bool,
+    /// the cells the fits use besides those of their comparisons
+    pub window: Window,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Options { phi_min: PHI_MIN }
+        Options { phi_min: PHI_MIN, fit: false, window: Window::default() }
     }
 }
+
+/// File of the fitted closure tables, in the diagnose folder.
+pub const FITTED: &str = "fitted.toml";
 
 /// What one closure's comparisons found.
 #[derive(Clone, Debug)]
@@ -49,6 +59,10 @@ pub struct ClosureDiagnosis {
     pub comparisons: Vec<Comparison>,
     /// kinetic closures: the coefficient a of eq 3.2 fitted to the extracted g0
     pub g0_fit: Option<G0Fit>,
+    /// with `--fit`: its parameters fitted to the run
+    pub fit: Option<ClosureFit>,
+    /// the closure's table as a scene writes it (the start of its fit)
+    pub table: toml::Table,
 }
 
 /// What [`Diagnosis::write`] wrote.
@@ -66,20 +80,63 @@ pub struct Written {
 pub struct Diagnosis {
     /// the run's output folder
     pub dir: PathBuf,
+    /// further runs whose cells were pooled with this one's ([`diagnose_pooled`])
+    pub pooled: Vec<PathBuf>,
     /// the run's number of cells
     pub cells: usize,
     /// the lowest phi of a usable cell
     pub phi_min: f64,
     /// one entry per closure
     pub closures: Vec<ClosureDiagnosis>,
+    /// the window of the fits
+    pub window: Window,
+    /// why the fluid-phase viscosity exponent is not fitted on this run
+    pub viscosity_fit: String,
+    /// the run's grains (what the closures inherit)
+    pub particles: saltus_core::scene::Particles,
 }
 
 /// Evaluate the closures of `closure_args` (or the scene's, or the library defaults) on
 /// the run whose output folder is `dir`.
 pub fn diagnose(dir: &Path, closure_args: &[String], opts: Options) -> anyhow::Result<Diagnosis> {
-    let mut fields = RunFields::read(dir)?;
-    let mut d = diagnose_fields(&mut fields, closure_args, opts)?;
-    d.dir = dir.to_path_buf();
+    diagnose_pooled(&[dir.to_path_buf()], closure_args, opts)
+}
+
+/// [`diagnose`] over several runs of one scene (seeds): each run is diagnosed on its own,
+/// then the cells of each comparison are pooled, in the order of `dirs`, and the fits
+/// (with `opts.fit`) are made on the pooled cells, so that their residuals hold the
+/// run-to-run scatter. The runs must have the same grains and closures.
+pub fn diagnose_pooled(dirs: &[PathBuf], closure_args: &[String], opts: Options) -> anyhow::Result<Diagnosis> {
+    let Some((first, rest)) = dirs.split_first() else { bail!("no run folder given") };
+    let unfitted = Options { fit: false, ..opts };
+    let mut fields = RunFields::read(first)?;
+    let mut d = diagnose_fields(&mut fields, closure_args, unfitted)?;
+    d.dir = first.clone();
+    for dir in rest {
+        let mut other = RunFields::read(dir)?;
+        if other.scene.particles != d.particles {
+            bail!(
+                "{}: its [particles] differ from those of {}; pool runs of one scene only",
+                dir.display(),
+                first.display()
+            );
+        }
+        let o = diagnose_fields(&mut other, closure_args, unfitted)?;
+        for cd in &mut d.closures {
+            let Some(oc) = o.closures.iter().find(|c| c.label == cd.label && c.model == cd.model) else {
+                bail!("{}: has no closure `{}` to pool with {}", dir.display(), cd.label, first.display());
+            };
+            for c in &mut cd.comparisons {
+                if let Some(x) = oc.comparisons.iter().find(|x| x.quantity == c.quantity) {
+                    c.append(x);
+                }
+            }
+        }
+        d.pooled.push(dir.clone());
+    }
+    if opts.fit {
+        d.fit()?;
+    }
     Ok(d)
 }
 
@@ -87,6 +144,17 @@ pub fn diagnose(dir: &Path, closure_args: &[String], opts: Options) -> anyhow::R
 pub fn diagnose_fields(fields: &mut RunFields, closure_args: &[String], opts: Options) -> anyhow::Result<Diagnosis> {
     if !(opts.phi_min.is_finite() && (0.0..1.0).contains(&opts.phi_min)) {
         bail!("--phi-min {}: allowed a volume fraction in [0, 1)", opts.phi_min);
+    }
+    let w = opts.window;
+    for (name, z) in [("--z-min", w.z_min), ("--z-max", w.z_max)] {
+        if let Some(z) = z.filter(|z| !z.is_finite()) {
+            bail!("{name} {z}: allowed a height in metres (a finite number)");
+        }
+    }
+    if let (Some(lo), Some(hi)) = (w.z_min, w.z_max) {
+        if lo >= hi {
+            bail!("--z-min {lo} --z-max {hi}: the window is empty; give z-min < z-max");
+        }
     }
     let named = closures::select(closure_args, &mut fields.scene)?;
     let mut out = Vec::new();
@@ -100,13 +168,45 @@ pub fn diagnose_fields(fields: &mut RunFields, closure_args: &[String], opts: Op
         } else {
             bail!("closure `{}` ({model}) is neither a local rheology nor a kinetic theory", n.label);
         };
-        out.push(ClosureDiagnosis { label: n.label, model, comparisons, g0_fit });
+        let table = fit::table_of(n.closure.as_ref())?;
+        out.push(ClosureDiagnosis { label: n.label, model, comparisons, g0_fit, fit: None, table });
     }
     let dir = fields.profiles_path.parent().map_or_else(PathBuf::new, Path::to_path_buf);
-    Ok(Diagnosis { dir, cells: fields.rows(), phi_min: opts.phi_min, closures: out })
+    let sc = &fields.scene;
+    let dem = sc.solver.kind == saltus_core::scene::SolverKind::Lagrangian;
+    let fluid = !dem || sc.solver.lagrangian.fluid != saltus_core::scene::FluidMode::Off;
+    let mut d = Diagnosis {
+        dir,
+        pooled: Vec::new(),
+        cells: fields.rows(),
+        phi_min: opts.phi_min,
+        closures: out,
+        window: opts.window,
+        viscosity_fit: fit::viscosity_unsupported(dem, fluid),
+        particles: sc.particles.clone(),
+    };
+    if opts.fit {
+        d.fit()?;
+    }
+    Ok(d)
 }
 
 impl Diagnosis {
+    /// Fit every closure's parameters on the comparisons' cells in the window.
+    pub fn fit(&mut self) -> anyhow::Result<()> {
+        for cd in &mut self.closures {
+            let closure = saltus_core::scene::granular_from_value(
+                toml::Value::Table(cd.table.clone()),
+                &self.particles,
+                Path::new("diagnose"),
+                &cd.label,
+            )?;
+            cd.fit =
+                Some(fit::fit_closure(&cd.label, closure.as_ref(), &cd.comparisons, &self.particles, self.window)?);
+        }
+        Ok(())
+    }
+
     /// Every comparison, closure by closure.
     pub fn comparisons(&self) -> impl Iterator<Item = &Comparison> {
         self.closures.iter().flat_map(|c| &c.comparisons)
@@ -173,6 +273,25 @@ impl Diagnosis {
             std::fs::write(&path, text).map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", path.display()))?;
             written.push(path);
         }
+        let mut first = true;
+        for cd in &self.closures {
+            let Some(f) = &cd.fit else { continue };
+            let runs: Vec<&Path> =
+                std::iter::once(self.dir.as_path()).chain(self.pooled.iter().map(PathBuf::as_path)).collect();
+            let Some(text) = fit::fitted_toml(f, &runs, self.phi_min, self.window, &self.viscosity_fit) else {
+                continue;
+            };
+            let mut names = vec![format!("fitted-{}.toml", crate::compare::slug(&cd.label))];
+            if first {
+                names.insert(0, FITTED.to_string());
+                first = false;
+            }
+            for name in names {
+                let path = out.join(name);
+                std::fs::write(&path, &text).map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", path.display()))?;
+                written.push(path);
+            }
+        }
         let mut warnings = Vec::new();
         for c in self.comparisons().filter(|c| c.cells() > 0) {
             match c.write(out) {
@@ -198,6 +317,9 @@ impl Diagnosis {
             self.cells,
             self.phi_min
         );
+        for p in &self.pooled {
+            s.push_str(&format!("pooled with the cells of {}\n", p.display()));
+        }
         s.push_str(&format!(
             "{:<24} {:<32} {:>6} {:>12} {:>12} {:>12}\n",
             "closure", "quantity", "cells", "rms", "rel. rms", "rel. bias"
@@ -241,6 +363,121 @@ impl Diagnosis {
                 s.push_str(&format!("{:<24} the same fit by band of phi: {}\n", cd.label, bands.join("; ")));
             }
         }
+        let fits: Vec<&ClosureFit> = self.closures.iter().filter_map(|c| c.fit.as_ref()).collect();
+        if !fits.is_empty() {
+            s.push_str(&self.fit_text(&fits));
+        }
+        s
+    }
+
+    /// The fits as JSON (the Python `saltus.diagnose`): per closure, per quantity, each
+    /// fit tried with its parameters and either its values, standard errors, cells and
+    /// residual RMS, or the reason the cells cannot support it; undefined numbers are null.
+    pub fn fits_json(&self) -> serde_json::Value {
+        use serde_json::json;
+        let num = |x: f64| if x.is_finite() { json!(x) } else { serde_json::Value::Null };
+        let nums = |v: &[f64]| v.iter().map(|x| num(*x)).collect::<Vec<_>>();
+        let closures: Vec<_> = self
+            .closures
+            .iter()
+            .filter_map(|cd| cd.fit.as_ref())
+            .map(|f| {
+                let quantities: Vec<_> = f
+                    .quantities
+                    .iter()
+                    .map(|q| {
+                        let attempts: Vec<_> = q
+                            .attempts
+                            .iter()
+                            .map(|a| match &a.result {
+                                Ok(s) => json!({
+                                    "params": a.params, "values": nums(&s.params), "stderr": nums(&s.stderr),
+                                    "stderr_independent": nums(&s.stderr_independent), "cells": s.cells,
+                                    "residual_rms": num(s.rms), "residual_lag1": num(s.r1),
+                                }),
+                                Err(reason) => json!({ "params": a.params, "reason": reason }),
+                            })
+                            .collect();
+                        json!({
+                            "quantity": q.quantity, "control": q.control, "held": q.held(),
+                            "kept": q.kept().is_some(), "x_range": nums(&[q.x_range.0, q.x_range.1]),
+                            "z_range": nums(&[q.z_range.0, q.z_range.1]), "attempts": attempts,
+                        })
+                    })
+                    .collect();
+                let unsupported: Vec<_> =
+                    f.unsupported.iter().map(|(q, r)| json!({ "quantity": q, "reason": r })).collect();
+                json!({
+                    "closure": f.label, "model": f.model, "quantities": quantities, "unsupported": unsupported,
+                    "table": f.table.as_ref().map(|t| serde_json::to_value(t).unwrap_or(serde_json::Value::Null)),
+                })
+            })
+            .collect();
+        json!({
+            "phi_min": self.phi_min, "z_min": self.window.z_min, "z_max": self.window.z_max,
+            "closures": closures, "viscosity": self.viscosity_fit,
+        })
+    }
+
+    /// The fits' part of the printed table.
+    fn fit_text(&self, fits: &[&ClosureFit]) -> String {
+        use comparison::figure;
+        let w = self.window;
+        let bound = |z: Option<f64>| z.map_or_else(|| "-".to_string(), |z| format!("{z}"));
+        let mut s = format!(
+            "fits (cells with phi > {}, z in [{}, {}] m; +- the standard error counting the lag-1 correlation of the \
+             residuals, [cells independent]):\n",
+            self.phi_min,
+            bound(w.z_min),
+            bound(w.z_max)
+        );
+        for f in fits {
+            for q in &f.quantities {
+                for a in &q.attempts {
+                    match &a.result {
+                        Ok(sol) => {
+                            let values: Vec<String> = a
+                                .params
+                                .iter()
+                                .enumerate()
+                                .map(|(i, p)| {
+                                    format!(
+                                        "{p} = {} +- {} [{}]",
+                                        figure(sol.params[i]),
+                                        figure(sol.stderr[i]),
+                                        figure(sol.stderr_independent[i])
+                                    )
+                                })
+                                .collect();
+                            let held = q.held();
+                            let held =
+                                if held.is_empty() { String::new() } else { format!("; held: {}", held.join(", ")) };
+                            s.push_str(&format!(
+                                "{:<24} {}: {} over {} cells, {} in [{}, {}], residual RMS {}{held}\n",
+                                f.label,
+                                q.quantity,
+                                values.join(", "),
+                                sol.cells,
+                                q.control,
+                                figure(q.x_range.0),
+                                figure(q.x_range.1),
+                                figure(sol.rms)
+                            ));
+                        }
+                        Err(reason) => s.push_str(&format!(
+                            "{:<24} {} ({}): not fitted: {reason}\n",
+                            f.label,
+                            q.quantity,
+                            a.params.join(", ")
+                        )),
+                    }
+                }
+            }
+            for (what, reason) in &f.unsupported {
+                s.push_str(&format!("{:<24} {what}: not fitted: {reason}\n", f.label));
+            }
+        }
+        s.push_str(&format!("viscosity exponent (Fry et al. 2024 eqs 51-52): not fitted: {}\n", self.viscosity_fit));
         s
     }
 }

@@ -11,6 +11,7 @@
 //! scenes.
 
 mod closures;
+mod closures_file;
 mod domain;
 mod forcing;
 mod lagrangian;
@@ -31,6 +32,7 @@ use crate::needs::{Field, Needs};
 use crate::param::ParamRange;
 
 pub use closures::{closure_from_value, de_concrete, granular_from_value, Closures, DEFAULT_MODELS};
+pub use closures_file::{apply_closures_file, closures_file_tables, CLOSURES_FILE_KEYS};
 pub use domain::{CellSize, Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT, MAX_STRETCH_DECADES};
 pub use forcing::{Forcing, Quantity, Signal};
 pub use lagrangian::{
@@ -201,13 +203,33 @@ impl Scene {
 
     /// Read a scene file and apply `--set KEY=VALUE` overrides before resolving it.
     pub fn from_file_with(path: impl AsRef<Path>, overrides: &[String]) -> Result<Scene> {
+        Self::from_file_with_closures(path, overrides, None)
+    }
+
+    /// [`Scene::from_file_with`] with the `[closures.<family>]` tables of closures file
+    /// `closures` (`saltus run --closures FILE`) in place of the scene's, family by
+    /// family, before the overrides; the file is recorded in `meta.closures_file`. An
+    /// error inside a table of the file names the file.
+    pub fn from_file_with_closures(
+        path: impl AsRef<Path>,
+        overrides: &[String],
+        closures: Option<&Path>,
+    ) -> Result<Scene> {
         let path = path.as_ref();
         let text = std::fs::read_to_string(path).map_err(|source| Error::Io { file: path.into(), source })?;
         let mut table = parse_table(&text, path)?;
+        let families = match closures {
+            Some(c) => closures_file::apply_closures_file(&mut table, c)?,
+            None => Vec::new(),
+        };
         for o in overrides {
             apply_override(&mut table, o)?;
         }
-        Self::from_table(table, path)
+        let scene = Self::from_table(table, path);
+        match closures {
+            Some(c) => scene.map_err(|e| closures_file::attribute(e, c, &families)),
+            None => scene,
+        }
     }
 
     /// Resolve and check a scene given as a TOML table (`file` is used in messages and

@@ -19,6 +19,10 @@ pub struct Meta {
     /// one paragraph
     #[serde(default)]
     pub description: String,
+    /// the closures file (`saltus run --closures FILE`) whose tables replaced the scene's,
+    /// absolute: a record of where the `[closures]` tables came from, not read again
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub closures_file: Option<String>,
 }
 
 /// Carrier fluid.
