@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 /// * Source: Fry et al. 2024 eq 32 with the first form of eq 51 (fit of their IBM-DEM
 ///   Couette bedload simulations, figure 8).
 /// * Why the extra power of (1 - phi): Fry's apparent viscosity is defined on the phase
-///   stress, eta_eq = Sigma^f / gamma_dot (eq 50), and Sigma^f = eps <sigma>^f + n <s^f>^p
+///   stress, eta_eq = Sigma^f / gamma_dot (eq 50), and Sigma^f = eps `<sigma>^f` + n `<s^f>^p`
 ///   minus the Reynolds stress (eq 21) already carries the fluid fraction eps = 1 - phi. The fluid-phase
 ///   stress of this library's solvers is eps rho_f nu_eff du_f/dz (the trait's ratio
 ///   multiplies nu_f inside eps), so nu_eff = eta_eq / (rho_f eps): the fluid-phase stress
