@@ -1,25 +1,13 @@
 //! Verification of the 1D column fluid solver (docs/verification.md, benchmarks 1 and 2, drag
 //! coupling, bed case, error paths). Run with `cargo test -p saltus-solvers --release`.
 
+mod common;
+use common::{turbulence, viscosity};
+
 use std::path::Path;
 
 use approx::assert_relative_eq;
-use saltus_core::closure::Family;
-use saltus_core::scene::{closure_from_value, parse_table};
-use saltus_core::{EffectiveViscosity, Turbulence};
 use saltus_solvers::column::{Closures, ColumnError, ColumnParams, Coupling, FluidColumn, Grid, TopBoundary};
-
-fn turbulence(text: &str) -> Box<dyn Turbulence> {
-    saltus_closures::link();
-    let t = parse_table(text, Path::new("test")).expect("toml");
-    closure_from_value(t.into(), Family::Turbulence, Path::new("test"), "closures.turbulence").expect("turbulence")
-}
-
-fn viscosity(text: &str) -> Box<dyn EffectiveViscosity> {
-    saltus_closures::link();
-    let t = parse_table(text, Path::new("test")).expect("toml");
-    closure_from_value(t.into(), Family::Viscosity, Path::new("test"), "closures.viscosity").expect("viscosity")
-}
 
 struct Inputs {
     phi: Vec<f64>,

@@ -12,12 +12,13 @@
 //! U0 and the temporal order of BDF2, from the errors at dt, dt/2 and dt/4 against a run
 //! at dt/64 on the same grid, is 2 within 0.2 (backward Euler's is 1 within 0.2).
 
+mod common;
+use common::{turbulence, viscosity};
+
 use std::f64::consts::TAU;
 use std::path::Path;
 
-use saltus_core::closure::Family;
-use saltus_core::scene::{closure_from_value, parse_table, Scene};
-use saltus_core::{EffectiveViscosity, Turbulence};
+use saltus_core::scene::{parse_table, Scene};
 use saltus_solvers::column::{Closures, ColumnParams, Coupling, FluidColumn, Grid, TopBoundary};
 use saltus_solvers::eulerian::{Config, Eulerian};
 use saltus_solvers::run::{Ending, Stepper};
@@ -36,18 +37,6 @@ fn delta() -> f64 {
 fn exact(z: f64, t: f64) -> f64 {
     let (w, eta) = (TAU / PERIOD, z / delta());
     U0 * ((w * t).sin() - (-eta).exp() * (w * t - eta).sin())
-}
-
-fn turbulence(text: &str) -> Box<dyn Turbulence> {
-    saltus_closures::link();
-    let t = parse_table(text, Path::new("test")).expect("toml");
-    closure_from_value(t.into(), Family::Turbulence, Path::new("test"), "closures.turbulence").expect("turbulence")
-}
-
-fn viscosity(text: &str) -> Box<dyn EffectiveViscosity> {
-    saltus_closures::link();
-    let t = parse_table(text, Path::new("test")).expect("toml");
-    closure_from_value(t.into(), Family::Viscosity, Path::new("test"), "closures.viscosity").expect("viscosity")
 }
 
 /// The clear-fluid column over two periods at `steps` per period: its velocity at 2 T.

@@ -1,4 +1,4 @@
-//! Scene overrides shared by the Lagrangian test files.
+//! Scene overrides and closure constructors shared by the solvers' test files.
 
 // each test file that includes this module uses some of these only
 #![allow(dead_code)]
@@ -26,3 +26,21 @@ pub const TINY_COUPLED_BED: [&str; 6] = [
     "domain.water_depth=0.03",
     "solver.lagrangian.settle_time=0.05",
 ];
+
+/// A turbulence closure from its TOML table (`type = "laminar"`).
+pub fn turbulence(text: &str) -> Box<dyn saltus_core::Turbulence> {
+    saltus_closures::link();
+    let t = saltus_core::scene::parse_table(text, std::path::Path::new("test")).expect("toml");
+    let family = saltus_core::closure::Family::Turbulence;
+    saltus_core::scene::closure_from_value(t.into(), family, std::path::Path::new("test"), "closures.turbulence")
+        .expect("turbulence")
+}
+
+/// A viscosity closure from its TOML table (`type = "clear_fluid"`).
+pub fn viscosity(text: &str) -> Box<dyn saltus_core::EffectiveViscosity> {
+    saltus_closures::link();
+    let t = saltus_core::scene::parse_table(text, std::path::Path::new("test")).expect("toml");
+    let family = saltus_core::closure::Family::Viscosity;
+    saltus_core::scene::closure_from_value(t.into(), family, std::path::Path::new("test"), "closures.viscosity")
+        .expect("viscosity")
+}
