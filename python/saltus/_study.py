@@ -318,6 +318,10 @@ def sweep(
     )
 
 
+#: Columns of the comparison tables that hold text (a variant named "30" stays "30").
+_TEXT_COLUMNS = ("variant", "solver", "steady", "error")
+
+
 def _read_table(path: Optional[str]) -> Optional[Dict[str, List[Any]]]:
     # a CSV of saltus as columns: numbers where every cell reads as one (empty: NaN)
     if path is None:
@@ -328,6 +332,9 @@ def _read_table(path: Optional[str]) -> Optional[Dict[str, List[Any]]]:
     columns: Dict[str, List[Any]] = {}
     for k, name in enumerate(header):
         cells = [r[k] for r in body]
+        if name in _TEXT_COLUMNS:
+            columns[name] = cells
+            continue
         try:
             columns[name] = [float(c) if c != "" else math.nan for c in cells]
         except ValueError:
