@@ -302,9 +302,10 @@ pub fn viscosity_unsupported(dem: bool, fluid: bool) -> String {
     if !fluid {
         "the run has no fluid".into()
     } else if dem {
-        "the DEM's fluid column carries the shear stress of the scene's own viscosity closure (tau_f), so the run \
-         does not measure an effective viscosity; Fry et al. measure it with a resolved fluid (IBM), which this DEM \
-         does not have"
+        "not fitted here: the DEM's fluid-phase stress is the column's tau_f (the scene's viscosity closure) plus \
+         the stress the drag exchange carries across the grains, which the profiles do not hold; with a clear-fluid \
+         column and drag_velocity = \"sphere_average\" it can be estimated from beta, u_f and phi (docs/validation.md, \
+         Fry et al. 2024)"
             .into()
     } else {
         "the Eulerian run's fluid stress is the scene's viscosity closure itself".into()
