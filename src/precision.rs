@@ -100,9 +100,10 @@ pub fn rows(spec: &ReferenceSpec, runs: &[(&str, Option<&RunReport>)], data: &[&
         Some(r) => (r.summary.qs_star, r.summary.qs_star_stderr.unwrap_or(0.0)),
         None => (spec.qs_star, spec.qs_star_stderr.unwrap_or(0.0)),
     };
-    let profiles_ref: Vec<Table> = match reference {
-        Some(r) => vec![to_table(&r.profiles)],
-        None if spec.data => data.iter().map(|t| (*t).clone()).collect(),
+    let own = reference.map(|r| to_table(&r.profiles));
+    let profiles_ref: Vec<&Table> = match &own {
+        Some(t) => vec![t],
+        None if spec.data => data.to_vec(),
         None => Vec::new(),
     };
     runs.iter()
