@@ -16,7 +16,7 @@ const PSEUDO_DT_CAP: f64 = 10.0;
 
 impl FluidColumn {
     /// Solve the steady equation by Picard iteration on nu_t with under-relaxation
-    /// [`ColumnParams::relaxation`] and infinite pseudo time step (the implicit operator
+    /// [`ColumnParams::relaxation`](super::super::params::ColumnParams::relaxation) and infinite pseudo time step (the implicit operator
     /// with the no-slip wall is non-singular). Each iteration evaluates nu_t from the
     /// current velocity, checks the residual of the steady equation with that nu_t
     /// against `tol` (see [`FluidColumn::residual`]), and otherwise relaxes nu_t and
