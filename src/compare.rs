@@ -41,7 +41,7 @@ pub const TABLE: &str = "comparison.csv";
 pub const FIGURE: &str = "comparison.png";
 
 /// Columns of the comparison table, after `variant` and before `error`.
-pub const COLUMNS: [&str; 11] = [
+pub const COLUMNS: [&str; 13] = [
     "solver",
     "qs_star",
     "qs",
@@ -53,6 +53,8 @@ pub const COLUMNS: [&str; 11] = [
     "steps",
     "wall_time_s",
     "mass_error",
+    "net_transport",
+    "net_transport_stderr",
 ];
 
 #[derive(Debug, Deserialize)]
@@ -343,6 +345,8 @@ fn summary_cells(s: &saltus_solvers::Summary, precise: bool) -> Vec<String> {
             s.steps.to_string(),
             format!("{:?}", s.wall_time_s),
             s.mass_error.map_or_else(String::new, |m| format!("{m:?}")),
+            precise(s.net_transport),
+            precise(s.net_transport_stderr),
         ];
     }
     // an absent figure is an empty cell
@@ -359,6 +363,8 @@ fn summary_cells(s: &saltus_solvers::Summary, precise: bool) -> Vec<String> {
         s.steps.to_string(),
         format!("{:.3}", s.wall_time_s),
         s.mass_error.map_or_else(String::new, |m| format!("{m:.1e}")),
+        rounded(s.net_transport, |v| format!("{v:.3e}")),
+        rounded(s.net_transport_stderr, |v| format!("{v:.1e}")),
     ]
 }
 

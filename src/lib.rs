@@ -42,6 +42,7 @@ pub mod diagnose;
 pub mod differences;
 pub mod eval;
 pub mod listing;
+pub mod phase_plot;
 pub mod plot;
 pub mod precision;
 pub mod runner;

@@ -332,7 +332,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             };
             // the last state is reported whatever the ending; an early stop then sets
             // the exit code (see `saltus::runner::Stopped`)
-            let figure = outcome.figure.as_ref().map_or_else(String::new, |p| format!("\nfigure:  {}", p.display()));
+            let figure = outcome.figure.iter().chain(&outcome.phase_figures).fold(String::new(), |mut s, p| {
+                s.push_str(&format!("\nfigure:  {}", p.display()));
+                s
+            });
             let paragraph = format!("{report}\noutputs: {}{figure}", out.display());
             if json {
                 outln!("{}", serde_json::to_string_pretty(&report.summary)?);

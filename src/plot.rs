@@ -156,7 +156,8 @@ pub fn register_font() -> anyhow::Result<()> {
     }
 }
 
-pub(crate) const COLORS: [RGBColor; 8] = [
+/// Line colours, in order.
+pub const COLORS: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
@@ -317,8 +318,9 @@ pub struct Reference<'a> {
     pub table: &'a Table,
 }
 
-/// Anything with named columns.
-trait Columns {
+/// Anything with named columns: a run's [`Profiles`] or a [`Table`] read from a file.
+pub trait Columns {
+    /// the column of that name, if any
     fn column(&self, name: &str) -> Option<&[f64]>;
 }
 
@@ -407,23 +409,40 @@ pub fn draw_profiles(
     references: &[Reference],
     png: &Path,
 ) -> anyhow::Result<()> {
+    let curves: Vec<(String, &dyn Columns)> = curves.iter().map(|(l, c)| (l.clone(), *c as &dyn Columns)).collect();
+    draw_columns(title, panels, &curves, references, None, png)
+}
+
+/// [`draw_profiles`] for any column source, over the heights `window` (m) when given,
+/// else over every finite height of the curves.
+pub fn draw_columns(
+    title: &str,
+    panels: &[Panel],
+    curves: &[(String, &dyn Columns)],
+    references: &[Reference],
+    window: Option<(f64, f64)>,
+    png: &Path,
+) -> anyhow::Result<()> {
     register_font()?;
     let shown: Vec<&Panel> =
-        panels.iter().filter(|p| curves.iter().any(|(_, c)| p.columns.iter().any(|k| c.get(k).is_some()))).collect();
+        panels.iter().filter(|p| curves.iter().any(|(_, c)| p.columns.iter().any(|k| c.column(k).is_some()))).collect();
     if shown.is_empty() {
         bail!("no profile column to draw");
     }
-    let (z0, z1) = {
-        let z = curves.iter().filter_map(|(_, c)| c.get("z")).flatten().copied().filter(|z| z.is_finite());
-        let (lo, hi) = z.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), z| (a.min(z), b.max(z)));
-        if !(lo.is_finite() && hi.is_finite()) {
-            bail!("the profiles hold no finite z");
+    let (z0, z1) = match window {
+        Some((lo, hi)) if lo.is_finite() && hi.is_finite() && hi > lo => (lo, hi),
+        _ => {
+            let z = curves.iter().filter_map(|(_, c)| c.column("z")).flatten().copied().filter(|z| z.is_finite());
+            let (lo, hi) = z.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), z| (a.min(z), b.max(z)));
+            if !(lo.is_finite() && hi.is_finite()) {
+                bail!("the profiles hold no finite z");
+            }
+            // one height (a comparison with one usable cell) is drawn in a window of its
+            // own height about it (at least a millimetre)
+            let pad = if hi > lo { 0.02 * (hi - lo) } else { (0.5 * hi.abs()).max(1e-3) };
+            // no padding below a bottom at z = 0 (a `-0.0` label)
+            (if lo >= 0.0 && hi > lo { 0.0 } else { lo - pad }, hi + pad)
         }
-        // one height (a comparison with one usable cell) is drawn in a window of its own
-        // height about it (at least a millimetre)
-        let pad = if hi > lo { 0.02 * (hi - lo) } else { (0.5 * hi.abs()).max(1e-3) };
-        // no padding below a bottom at z = 0 (a `-0.0` label)
-        (if lo >= 0.0 && hi > lo { 0.0 } else { lo - pad }, hi + pad)
     };
     let width = (380 * shown.len() as u32 + 20).max(860);
     let root = BitMapBackend::new(png, (width, 680)).into_drawing_area();
@@ -439,7 +458,7 @@ pub fn draw_profiles(
 fn draw_panel(
     area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
     panel: &Panel,
-    curves: &[(String, &Profiles)],
+    curves: &[(String, &dyn Columns)],
     references: &[Reference],
     (z0, z1): (f64, f64),
 ) -> anyhow::Result<()> {
@@ -447,7 +466,8 @@ fn draw_panel(
     let mut lines = Vec::new();
     for (ci, (label, prof)) in curves.iter().enumerate() {
         for (ki, &col) in panel.columns.iter().enumerate() {
-            let pts = points(*prof, col, panel.log_x);
+            let mut pts = points(*prof, col, panel.log_x);
+            pts.retain(|p| p.1 >= z0 && p.1 <= z1);
             if pts.is_empty() {
                 continue;
             }

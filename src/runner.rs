@@ -64,6 +64,9 @@ pub struct RunOutcome {
     pub error: Option<String>,
     /// the profile figure, when drawn
     pub figure: Option<PathBuf>,
+    /// the phase-average figures (`phases.png`, `phase_profiles.png`) of a run under a
+    /// periodic forcing; empty otherwise
+    pub phase_figures: Vec<PathBuf>,
     /// things the user should know that did not fail the run (missing reference data, a
     /// figure that could not be drawn)
     pub warnings: Vec<String>,
@@ -237,6 +240,7 @@ pub fn run_scene(scene: &Scene, out: &Path, bar: &ProgressBar, settings: &RunSet
         report: None,
         error: Some(e.to_string()),
         figure: None,
+        phase_figures: Vec::new(),
         warnings: Vec::new(),
         wall: 0.0,
     })
@@ -308,13 +312,25 @@ pub fn run_scene_with(
             None
         }
     };
+    let phase_figures = crate::phase_plot::draw(out, &scene.label()).unwrap_or_else(|e| {
+        warnings.push(format!("{}: cannot draw the phase averages: {e:#}", out.display()));
+        Vec::new()
+    });
     let error = match &run.ending {
         _ if scene.closures.failure().is_some() => scene.closures.failure(),
         Ending::Unstable(b) => Some(format!("unstable at {b}")),
         Ending::Interrupted => Some(format!("interrupted at t = {} s", decimal(run.report.summary.sim_time_s))),
         Ending::Steady | Ending::EndTime | Ending::MaxSteps | Ending::WallClock => None,
     };
-    Ok(RunOutcome { ending: Some(run.ending), report: Some(run.report), error, figure, warnings, wall: run.wall })
+    Ok(RunOutcome {
+        ending: Some(run.ending),
+        report: Some(run.report),
+        error,
+        figure,
+        phase_figures,
+        warnings,
+        wall: run.wall,
+    })
 }
 
 fn draw_run(

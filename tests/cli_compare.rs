@@ -77,6 +77,8 @@ fn compare_runs_both_models_of_case01() {
         "steps",
         "wall_time_s",
         "mass_error",
+        "net_transport",
+        "net_transport_stderr",
     ];
     if dem {
         expected.extend(["rms_phi", "rms_u_p", "rms_u_f", "rms_theta_g"]);

@@ -159,6 +159,18 @@ pub fn run_with(
         p.write(out, scene.physics.forcing.as_ref())?;
     }
     let mut report = stepper.report(&driven.ending, &driven.clock);
+    if let Some(p) = &phases {
+        let net = p.net();
+        report.summary.net_transport = net.per_period;
+        report.summary.net_transport_stderr = net.error;
+        if let Some(q) = net.per_period {
+            let error = net.error.map_or_else(String::new, |e| format!(" +- {e:.3e}"));
+            report.text.push_str(&format!(
+                "; net transport {q:.4e}{error} m^2 per period over {} periods after {} of spin-up",
+                net.periods, net.spin_up_periods
+            ));
+        }
+    }
     report.summary.cpu_time_s = run::cpu::thread_seconds()
         .zip(stepper.worker_cpu())
         .zip(cpu_before)

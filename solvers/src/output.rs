@@ -157,6 +157,14 @@ pub struct Summary {
     /// the initial bed height and h the water depth of the scene; absent where undefined
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rouse_number: Option<f64>,
+    /// runs under a periodic forcing with phase averages (`output.phases`): the net
+    /// transport per period, the mean over the averaged periods of the integral of qs over
+    /// one period (m^2; `phases.json`); absent before a whole period is averaged
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub net_transport: Option<f64>,
+    /// its standard error over the averaged periods (m^2), with two periods or more
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub net_transport_stderr: Option<f64>,
     /// DEM runs: neighbour-list builds of the whole run, the deposition's included (per
     /// step: over `total_steps`)
     #[serde(default, skip_serializing_if = "Option::is_none")]

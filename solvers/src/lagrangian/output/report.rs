@@ -113,6 +113,8 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
         haff_granular_temperature: haff.and_then(|h| cooling.haff_at(h, m.time())).and_then(finite),
         haff_max_deviation: haff.and_then(|_| finite(cooling.max_deviation)),
         rouse_number: rouse,
+        net_transport: None,
+        net_transport_stderr: None,
         neighbour_builds: Some(m.dem().list().builds),
         timing: None,
     };
