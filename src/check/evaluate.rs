@@ -212,7 +212,21 @@ pub(super) fn batch_at(m: &Built, xs: &[Vec<f64>]) -> Result<(), String> {
             let (_, _, s) = fluctuation_point(&xs[0]);
             let t: Vec<TurbulencePoint> = xs.iter().map(|x| fluctuation_point(x).0).collect();
             m.diffusivity_batch(&t, &s, &mut out);
-            cmp("diffusivity", &out, &t.iter().map(|t| m.diffusivity(t, &s)).collect::<Vec<_>>())
+            cmp("diffusivity", &out, &t.iter().map(|t| m.diffusivity(t, &s)).collect::<Vec<_>>())?;
+            // the draws of a chunk, each from its own stream, against one draw per point
+            let p: Vec<ParticleSlip> = xs.iter().map(|x| fluctuation_point(x).1).collect();
+            let streams = || (0..n as u64).map(|i| saltus_core::rng::stream(0, i)).collect::<Vec<_>>();
+            let (mut a, mut b) = (streams(), streams());
+            let mut draws = vec![saltus_core::FluctuationDraw::default(); n];
+            m.draw_batch(&t, &p, &s, &mut a.iter_mut().collect::<Vec<_>>(), &mut draws);
+            for (i, (d, r)) in draws.iter().zip(b.iter_mut()).enumerate() {
+                let one = m.draw(&t[i], &p[i], &s, r);
+                let pairs = [(d.u[0], one.u[0]), (d.u[1], one.u[1]), (d.u[2], one.u[2]), (d.duration, one.duration)];
+                if !pairs.iter().all(|(x, y)| same(*x, *y)) {
+                    return Err(format!("draws: batch {d:?} != one per particle {one:?} at point {i}"));
+                }
+            }
+            Ok(())
         }
         Built::WallFriction(m) => {
             let re = col(0);
