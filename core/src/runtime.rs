@@ -276,6 +276,10 @@ pub enum RuntimeLimit {
     StokesParam(usize),
     /// [`Limit::Einstein`] with `coefficient` the parameter of this index
     EinsteinParam(usize),
+    /// [`Limit::StaticFriction`] with `mu_s` the parameter of this index
+    StaticFrictionParam(usize),
+    /// [`Limit::WallLength`] with `kappa` the parameter of this index
+    WallLengthParam(usize),
 }
 
 impl RuntimeLimit {
@@ -286,6 +290,8 @@ impl RuntimeLimit {
             RuntimeLimit::Fixed(l) => l,
             RuntimeLimit::StokesParam(i) => Limit::Stokes { cd_re: value(i) },
             RuntimeLimit::EinsteinParam(i) => Limit::Einstein { coefficient: value(i) },
+            RuntimeLimit::StaticFrictionParam(i) => Limit::StaticFriction { mu_s: value(i) },
+            RuntimeLimit::WallLengthParam(i) => Limit::WallLength { kappa: value(i) },
         }
     }
 }
@@ -454,7 +460,11 @@ pub fn register(model: RuntimeModel) -> Result<(), String> {
         }
     }
     for l in &model.limits {
-        if let RuntimeLimit::StokesParam(i) | RuntimeLimit::EinsteinParam(i) = l {
+        if let RuntimeLimit::StokesParam(i)
+        | RuntimeLimit::EinsteinParam(i)
+        | RuntimeLimit::StaticFrictionParam(i)
+        | RuntimeLimit::WallLengthParam(i) = l
+        {
             if *i >= model.params.len() {
                 return Err(format!("a limit names parameter {i}, which does not exist"));
             }

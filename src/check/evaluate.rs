@@ -57,6 +57,32 @@ pub(super) fn turbulence_eval(m: &dyn Turbulence, x: &[f64]) -> (Vec<f64>, Vec<f
     (lm, nut, point)
 }
 
+/// l_m / z at the centre of the lowest of 20 cells of a clear-fluid column `height` high,
+/// sheared at 10 1/s, grains of 1 mm.
+pub(super) fn wall_ratio(m: &dyn Turbulence, height: f64) -> f64 {
+    let n = 20;
+    let dz = height / n as f64;
+    let z: Vec<f64> = (0..n).map(|i| (i as f64 + 0.5) * dz).collect();
+    let (widths, phi, dudz) = (vec![dz; n], vec![0.0; n], vec![10.0; n]);
+    let (k, omega) = (vec![1e-4; n], vec![10.0; n]);
+    let transported: Vec<&[f64]> = match m.transported().len() {
+        0 => Vec::new(),
+        _ => vec![&k, &omega],
+    };
+    let col = ColumnView {
+        z: &z,
+        dz: &widths,
+        phi: &phi,
+        dudz: &dudz,
+        diameter: 1e-3,
+        nu_f: 1e-6,
+        transported: &transported,
+    };
+    let mut lm = vec![0.0; n];
+    m.mixing_length(&col, &mut lm);
+    lm[0] / z[0]
+}
+
 pub(super) fn fluctuation_point(x: &[f64]) -> (TurbulencePoint, ParticleSlip, FlowScales) {
     (
         TurbulencePoint { k: x[0], omega: x[1], nu_t: x[2], reynolds_stress: x[3] },
