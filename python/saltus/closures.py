@@ -250,7 +250,8 @@ def register_fluctuation(
     must not draw random numbers. A chunk of draws (``Fluctuation::draw_batch``, what
     ``closure_check`` compares with one draw per point) is one call on arrays, each
     draw's variates from its own particle's stream, in the order above; the DEM calls it
-    once per draw (a particle whose eddy expired), with arrays of one element.
+    once per chunk of 256 particles per evaluation, on the particles of the chunk whose
+    eddy expired (none: no call).
 
     ``diffusivity(k=..., omega=..., nu_t=..., reynolds_stress=..., **params, depth,
     bulk_velocity)`` returns the wall-normal particle diffusivity D >= 0 (m^2/s) on the
