@@ -242,7 +242,9 @@ impl<T: DescribeField> DescribeField for Option<T> {
 /// A property a model declares about its main output, verified by `saltus closure check`
 /// (see `saltus::check`). The main output and input of each family: drag, C_D(Re_p);
 /// hindrance, f(phi) at every Re_p; viscosity, nu_eff/nu_f(phi); local granular
-/// rheology, mu(I or K). A limit declared on a family it does not apply to fails the check.
+/// rheology, mu(I or K); kinetic theory, g0(phi); algebraic turbulence, l_m(z) in clear
+/// fluid; fluctuation, the diffusivity D. A limit declared on a family it does not apply
+/// to fails the check.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum Limit {
@@ -265,6 +267,26 @@ pub enum Limit {
     Decreasing,
     /// the main output does not decrease with the main input
     Increasing,
+    /// local granular rheology: mu tends to `mu_s` as the control number I (or K) -> 0,
+    /// the quasi-static friction of mu(I) (Jop, Forterre & Pouliquen 2006 eq 5;
+    /// Chassagne et al. 2023 eq 1.1)
+    StaticFriction {
+        /// limit of mu
+        mu_s: f64,
+    },
+    /// local granular rheology: the packing phi does not increase with the control
+    /// number (dilatancy, Chassagne et al. 2023 eq 1.2); the solver's bisection of the
+    /// packing inverse relies on it
+    PackingDecreasing,
+    /// algebraic turbulence: l_m / z tends to `kappa` as z -> 0 in clear fluid, the law
+    /// of the wall l_m = kappa z (Prandtl; Chassagne et al. 2023 eq 2.8b without grains)
+    WallLength {
+        /// von Karman constant
+        kappa: f64,
+    },
+    /// fluctuation: the particle diffusivity D >= 0 (a negative D makes the drift flux
+    /// of Chassagne et al. 2023 eq 4.4 anti-diffusive)
+    NonNegative,
 }
 
 /// Self-description shared by every closure: name, source, parameters, validation.

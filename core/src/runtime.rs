@@ -191,6 +191,9 @@ pub const MAX_VARIATES: usize = 16;
 /// proposed model (mu_s of eq B1 at mu_p = 0.4).
 pub const KINETIC_PARAMS: [&str; 4] = ["p0", "phi_rlp", "phi_max", "static_friction"];
 
+/// Outputs of the kinetic-theory face ([`Face::Kinetic`]) that may be +inf ([`accepts`]).
+const KINETIC_DIVERGENT: [&str; 5] = ["g0", "f1", "f2", "f3", "f4"];
+
 /// Outputs a function of `family` may return beside those of [`io`]: C_D Re_p (`cd_re`)
 /// of a drag law, which the solvers use where given (finite at Re_p = 0, and written as
 /// the law's own algebra: Dallavalle's c Re_p + a rather than (c + a / Re_p) Re_p).
@@ -205,11 +208,18 @@ pub fn optional_outputs(family: Family) -> &'static [&'static str] {
 /// `inputs` is usable: finite, or C_D = +inf at Re_p = 0 (a drag law with a Stokes limit,
 /// whose `cd_re` the solvers then use), or a draw's `duration` = +inf (no fluctuation
 /// until the flow has a turnover time), or a packing inverse's control number = +inf
-/// (phi <= 0).
+/// (phi <= 0), or a kinetic-theory coefficient g0, F1-F4 = +inf at phi > 0: they diverge
+/// at the packing where g0 does (Chassagne et al. 2023 eqs 2.23 and 3.2, g0 ~
+/// (phi_max - phi)^{-3/2}), which the built-in `frictional_collisional` returns as +inf
+/// from phi_max on. Its `e_eff`, a restitution, must be finite.
 pub fn accepts(family: Family, output: &str, value: f64, inputs: &[&[f64]], row: usize) -> bool {
     value.is_finite()
         || (family == Family::Fluctuation && output == "duration" && value == f64::INFINITY)
         || (family == Family::Granular && Control::from_name(output).is_some() && value == f64::INFINITY)
+        || (family == Family::Granular
+            && KINETIC_DIVERGENT.contains(&output)
+            && value == f64::INFINITY
+            && inputs.first().and_then(|phi| phi.get(row)).is_some_and(|&phi| phi > 0.0))
         || (family == Family::Drag
             && output == "cd"
             && value == f64::INFINITY
@@ -266,6 +276,10 @@ pub enum RuntimeLimit {
     StokesParam(usize),
     /// [`Limit::Einstein`] with `coefficient` the parameter of this index
     EinsteinParam(usize),
+    /// [`Limit::StaticFriction`] with `mu_s` the parameter of this index
+    StaticFrictionParam(usize),
+    /// [`Limit::WallLength`] with `kappa` the parameter of this index
+    WallLengthParam(usize),
 }
 
 impl RuntimeLimit {
@@ -276,6 +290,8 @@ impl RuntimeLimit {
             RuntimeLimit::Fixed(l) => l,
             RuntimeLimit::StokesParam(i) => Limit::Stokes { cd_re: value(i) },
             RuntimeLimit::EinsteinParam(i) => Limit::Einstein { coefficient: value(i) },
+            RuntimeLimit::StaticFrictionParam(i) => Limit::StaticFriction { mu_s: value(i) },
+            RuntimeLimit::WallLengthParam(i) => Limit::WallLength { kappa: value(i) },
         }
     }
 }
@@ -444,7 +460,11 @@ pub fn register(model: RuntimeModel) -> Result<(), String> {
         }
     }
     for l in &model.limits {
-        if let RuntimeLimit::StokesParam(i) | RuntimeLimit::EinsteinParam(i) = l {
+        if let RuntimeLimit::StokesParam(i)
+        | RuntimeLimit::EinsteinParam(i)
+        | RuntimeLimit::StaticFrictionParam(i)
+        | RuntimeLimit::WallLengthParam(i) = l
+        {
             if *i >= model.params.len() {
                 return Err(format!("a limit names parameter {i}, which does not exist"));
             }
@@ -488,4 +508,35 @@ pub fn set_python_host() {
 /// Whether [`set_python_host`] was called.
 pub fn python_host() -> bool {
     PYTHON_HOST.load(Ordering::Relaxed)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinetic_coefficients_may_diverge_where_the_packing_is_positive() {
+        let (phi, zero) = ([0.3, 0.64], [0.0]);
+        for name in KINETIC_DIVERGENT {
+            assert!(accepts(Family::Granular, name, f64::INFINITY, &[&phi], 1), "{name}");
+            assert!(accepts(Family::Granular, name, 2.5, &[&phi], 0), "{name}");
+            // g0 = 1 in the dilute limit: +inf there is a wrong law
+            assert!(!accepts(Family::Granular, name, f64::INFINITY, &[&zero], 0), "{name}");
+            assert!(!accepts(Family::Granular, name, f64::NEG_INFINITY, &[&phi], 1), "{name}");
+            assert!(!accepts(Family::Granular, name, f64::NAN, &[&phi], 1), "{name}");
+            // a coefficient of another family is not one
+            assert!(!accepts(Family::Viscosity, name, f64::INFINITY, &[&phi], 1), "{name}");
+        }
+        assert!(!accepts(Family::Granular, "e_eff", f64::INFINITY, &[&phi], 1));
+        assert!(!accepts(Family::Granular, "mu", f64::INFINITY, &[&phi], 1));
+    }
+
+    #[test]
+    fn other_infinities_stay_as_they_were() {
+        assert!(accepts(Family::Fluctuation, "duration", f64::INFINITY, &[&[0.0]], 0));
+        assert!(!accepts(Family::Fluctuation, "u_x", f64::INFINITY, &[&[0.0]], 0));
+        assert!(accepts(Family::Granular, "i", f64::INFINITY, &[&[0.0]], 0));
+        assert!(accepts(Family::Drag, "cd", f64::INFINITY, &[&[0.0]], 0));
+        assert!(!accepts(Family::Drag, "cd", f64::INFINITY, &[&[1.0]], 0));
+    }
 }

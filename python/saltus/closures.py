@@ -24,13 +24,24 @@ fluctuation            ``k``, ``omega``, ``nu_t``,  ``diffusivity``             
 ``diffusivity``        ``reynolds_stress``
 =====================  =========================  ==========================  =====================================
 
+``limits=`` declares what :func:`saltus.closure_check` verifies beside its generic checks
+(the failing input shrunk to the smallest found): rheology ``("static_friction", x)`` (mu
+-> x as the control number -> 0, and mu = x at 0; x a number or a parameter's name),
+``"packing_decreasing"`` (phi non-increasing in the control number), ``"increasing"`` (mu
+non-decreasing); kinetic theory ``"dilute"`` (g0 -> 1 as phi -> 0); mixing length
+``("wall_length", x)`` (l_m / z -> x as z -> 0 in clear fluid, the law of the wall
+l_m = kappa z); fluctuation ``"non_negative"`` (diffusivity D >= 0).
+
 The grain keywords are those of the scene's ``[particles]`` (outside a scene, in
 :class:`saltus.Closure` and :func:`saltus.closure_check`: the glass beads of Chassagne et
 al. 2023, d = 6 mm, rho_p = 2500 kg/m^3, e = 0.7, mu_p = 0.4). A function returning a
 dict of arrays may also return the single array of a one-output face.
 
 Errors: an exception raised by a face during a run, or an output of the wrong shape or
-dtype or not finite (a draw's ``duration`` may be +inf: no fluctuation yet), ends the run:
+dtype or not finite (a draw's ``duration`` may be +inf: no fluctuation yet; the
+kinetic-theory ``g0`` and ``f1``-``f4`` may be +inf where phi > 0, their divergence at the
+packing where g0 diverges, as the built-in ``frictional_collisional`` from ``phi_max`` on),
+ends the run:
 :func:`saltus.run` raises :class:`saltus.RunError` whose message names the family, the
 closure, the output and the input where it went wrong, with ``file`` the scene and
 ``key`` the closure's table (``closures.granular``).
@@ -70,6 +81,7 @@ def register_rheology(
     inverse: Optional[Callable[..., Any]] = None,
     source: Optional[str] = None,
     equation: Optional[str] = None,
+    limits: Optional[Sequence[Any]] = None,
 ) -> None:
     """Register a granular local rheology: friction mu = tau_p / p_p and volume fraction
     phi as functions of a control number, the ``[closures.granular]`` of a scene.
@@ -88,6 +100,9 @@ def register_rheology(
     bisects on arrays: 100 halvings of [-30, 30] in log x, one call of
     ``friction_packing`` per halving on the whole column (the packing must decrease with
     x), the arithmetic of the built-in laws without a closed form.
+
+    ``limits``: ``("static_friction", "mu_s")``, ``"packing_decreasing"``,
+    ``"increasing"`` (module docstring).
 
     Example, mu(I) of Chassagne et al. 2023 eqs 1.1-1.2 (the built-in ``mu_i``)::
 
@@ -112,7 +127,7 @@ def register_rheology(
         _params(params),
         source,
         equation,
-        None,
+        None if limits is None else list(limits),
         {"control": control},
     )
 
@@ -126,6 +141,7 @@ def register_kinetic_theory(
     drag_dissipation: str = "quadratic",
     source: Optional[str] = None,
     equation: Optional[str] = None,
+    limits: Optional[Sequence[Any]] = None,
 ) -> None:
     """Register a frictional-collisional granular stress whose kinetic-theory
     coefficients are written in Python: p = rho_p F1 T, eta = rho_p d F2 sqrt(T),
@@ -145,7 +161,7 @@ def register_kinetic_theory(
     ``phi_rlp`` = 0.57, ``phi_max`` = 0.635 (0 < phi_rlp < phi_max < 1), and
     ``static_friction`` = 0.146 + 0.228 tanh(0.4 / 0.232) (eq B1 at mu_p = 0.4).
     ``drag_dissipation``: ``"linear"`` (c_J = 3, eq 2.25) or ``"quadratic"`` (3 + 2
-    C_D^inf / C_D, eq 3.13).
+    C_D^inf / C_D, eq 3.13). ``limits``: ``"dilute"``, g0 -> 1 as phi -> 0.
 
     Raises:
         ValueError: an unknown ``drag_dissipation``, crossed packings (at load), a name
@@ -160,7 +176,7 @@ def register_kinetic_theory(
         _params(params),
         source,
         equation,
-        None,
+        None if limits is None else list(limits),
         {"saltation": bool(saltation), "drag_dissipation": drag_dissipation},
     )
 
@@ -172,6 +188,7 @@ def register_mixing_length(
     *,
     source: Optional[str] = None,
     equation: Optional[str] = None,
+    limits: Optional[Sequence[Any]] = None,
 ) -> None:
     """Register an algebraic turbulence closure, the ``[closures.turbulence]`` of a scene:
     the mixing length over the cells of one column, from which the solver takes the
@@ -182,7 +199,7 @@ def register_mixing_length(
     ``l_m`` (m) per cell: ``z`` the cell centres from the bottom wall, ``dz`` their
     widths, ``phi`` the solid fraction, ``dudz`` the fluid shear rate; ``diameter`` the
     grain diameter, ``nu_f`` the fluid's kinematic viscosity. One call per column
-    evaluation.
+    evaluation. ``limits``: ``("wall_length", "kappa")``, l_m / z -> kappa at the wall.
 
     Two-equation (k-omega) turbulence is not written in Python: its closure is coupled
     source terms, wall values and initial states of the fields the solver transports,
@@ -194,7 +211,14 @@ def register_mixing_length(
     """
     source, equation = _described(mixing_length, source, equation)
     _native.register_faces(
-        "mixing_length", name, {"evaluate": mixing_length}, _params(params), source, equation, None, {}
+        "mixing_length",
+        name,
+        {"evaluate": mixing_length},
+        _params(params),
+        source,
+        equation,
+        None if limits is None else list(limits),
+        {},
     )
 
 
@@ -208,6 +232,7 @@ def register_fluctuation(
     needs: Sequence[str] = (),
     source: Optional[str] = None,
     equation: Optional[str] = None,
+    limits: Optional[Sequence[Any]] = None,
 ) -> None:
     """Register a model of the fluid velocity fluctuations seen by particles, the
     ``[closures.fluctuation]`` of a scene: a particle face for the DEM and a mean-field
@@ -222,12 +247,17 @@ def register_fluctuation(
     run is bit-reproducible for a seed whatever the thread count, and a function that
     declares the variates of a built-in model in its order sees its numbers (the eddy
     interaction model ``eim``: three normals, then one exponential). The function itself
-    must not draw random numbers. The DEM calls it once per draw (a particle whose
-    eddy expired), with arrays of one element.
+    must not draw random numbers. A chunk of draws (``Fluctuation::draw_batch``, what
+    ``closure_check`` compares with one draw per point) is one call on arrays, each
+    draw's variates from its own particle's stream, in the order above; the DEM calls it
+    once per chunk of 256 particles per evaluation, on the particles of the chunk whose
+    eddy expired (none: no call).
 
     ``diffusivity(k=..., omega=..., nu_t=..., reynolds_stress=..., **params, depth,
     bulk_velocity)`` returns the wall-normal particle diffusivity D >= 0 (m^2/s) on the
     column, for the Eulerian drift velocity u_d = D grad(phi) / phi (eq 4.4).
+
+    ``limits``: ``"non_negative"``, D >= 0.
 
     ``needs``: the fields the model reads from the turbulence closure (``"k"``,
     ``"omega"``, ``"nu_t"``, ``"reynolds_stress"``); a scene whose turbulence closure does
@@ -245,7 +275,7 @@ def register_fluctuation(
         _params(params),
         source,
         equation,
-        None,
+        None if limits is None else list(limits),
         {"variates": None if variates is None else dict(variates), "needs": list(needs)},
     )
 

@@ -180,8 +180,8 @@ fn param(name: &str, v: &Bound<'_, PyAny>) -> PyResult<Param> {
 
 /// One `limits=` entry: a name, or (name, number or parameter name).
 fn limit(v: &Bound<'_, PyAny>, params: &[Param]) -> PyResult<RuntimeLimit> {
-    const KNOWN: &str =
-        "\"high_reynolds\", \"dilute\", \"decreasing\", \"increasing\", (\"stokes\", x), (\"einstein\", x)";
+    const KNOWN: &str = "\"high_reynolds\", \"dilute\", \"decreasing\", \"increasing\", \"packing_decreasing\", \
+                         \"non_negative\", (\"stokes\", x), (\"einstein\", x), (\"static_friction\", x), (\"wall_length\", x)";
     let bad = || PyValueError::new_err(format!("limits: {v} is not a limit; known: {KNOWN}"));
     if let Ok(s) = v.extract::<String>() {
         return Ok(RuntimeLimit::Fixed(match s.as_str() {
@@ -189,6 +189,8 @@ fn limit(v: &Bound<'_, PyAny>, params: &[Param]) -> PyResult<RuntimeLimit> {
             "dilute" => Limit::Dilute,
             "decreasing" => Limit::Decreasing,
             "increasing" => Limit::Increasing,
+            "packing_decreasing" => Limit::PackingDecreasing,
+            "non_negative" => Limit::NonNegative,
             "stokes" => Limit::Stokes { cd_re: 24.0 },
             "einstein" => Limit::Einstein { coefficient: 2.5 },
             _ => return Err(bad()),
@@ -203,6 +205,8 @@ fn limit(v: &Bound<'_, PyAny>, params: &[Param]) -> PyResult<RuntimeLimit> {
         return match kind.as_str() {
             "stokes" => Ok(RuntimeLimit::StokesParam(i)),
             "einstein" => Ok(RuntimeLimit::EinsteinParam(i)),
+            "static_friction" => Ok(RuntimeLimit::StaticFrictionParam(i)),
+            "wall_length" => Ok(RuntimeLimit::WallLengthParam(i)),
             _ => Err(bad()),
         };
     }
@@ -210,6 +214,8 @@ fn limit(v: &Bound<'_, PyAny>, params: &[Param]) -> PyResult<RuntimeLimit> {
     match kind.as_str() {
         "stokes" => Ok(RuntimeLimit::Fixed(Limit::Stokes { cd_re: x })),
         "einstein" => Ok(RuntimeLimit::Fixed(Limit::Einstein { coefficient: x })),
+        "static_friction" => Ok(RuntimeLimit::Fixed(Limit::StaticFriction { mu_s: x })),
+        "wall_length" => Ok(RuntimeLimit::Fixed(Limit::WallLength { kappa: x })),
         _ => Err(bad()),
     }
 }

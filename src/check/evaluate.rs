@@ -57,6 +57,32 @@ pub(super) fn turbulence_eval(m: &dyn Turbulence, x: &[f64]) -> (Vec<f64>, Vec<f
     (lm, nut, point)
 }
 
+/// l_m / z at the centre of the lowest of 20 cells of a clear-fluid column `height` high,
+/// sheared at 10 1/s, grains of 1 mm.
+pub(super) fn wall_ratio(m: &dyn Turbulence, height: f64) -> f64 {
+    let n = 20;
+    let dz = height / n as f64;
+    let z: Vec<f64> = (0..n).map(|i| (i as f64 + 0.5) * dz).collect();
+    let (widths, phi, dudz) = (vec![dz; n], vec![0.0; n], vec![10.0; n]);
+    let (k, omega) = (vec![1e-4; n], vec![10.0; n]);
+    let transported: Vec<&[f64]> = match m.transported().len() {
+        0 => Vec::new(),
+        _ => vec![&k, &omega],
+    };
+    let col = ColumnView {
+        z: &z,
+        dz: &widths,
+        phi: &phi,
+        dudz: &dudz,
+        diameter: 1e-3,
+        nu_f: 1e-6,
+        transported: &transported,
+    };
+    let mut lm = vec![0.0; n];
+    m.mixing_length(&col, &mut lm);
+    lm[0] / z[0]
+}
+
 pub(super) fn fluctuation_point(x: &[f64]) -> (TurbulencePoint, ParticleSlip, FlowScales) {
     (
         TurbulencePoint { k: x[0], omega: x[1], nu_t: x[2], reynolds_stress: x[3] },
@@ -212,7 +238,21 @@ pub(super) fn batch_at(m: &Built, xs: &[Vec<f64>]) -> Result<(), String> {
             let (_, _, s) = fluctuation_point(&xs[0]);
             let t: Vec<TurbulencePoint> = xs.iter().map(|x| fluctuation_point(x).0).collect();
             m.diffusivity_batch(&t, &s, &mut out);
-            cmp("diffusivity", &out, &t.iter().map(|t| m.diffusivity(t, &s)).collect::<Vec<_>>())
+            cmp("diffusivity", &out, &t.iter().map(|t| m.diffusivity(t, &s)).collect::<Vec<_>>())?;
+            // the draws of a chunk, each from its own stream, against one draw per point
+            let p: Vec<ParticleSlip> = xs.iter().map(|x| fluctuation_point(x).1).collect();
+            let streams = || (0..n as u64).map(|i| saltus_core::rng::stream(0, i)).collect::<Vec<_>>();
+            let (mut a, mut b) = (streams(), streams());
+            let mut draws = vec![saltus_core::FluctuationDraw::default(); n];
+            m.draw_batch(&t, &p, &s, &mut a.iter_mut().collect::<Vec<_>>(), &mut draws);
+            for (i, (d, r)) in draws.iter().zip(b.iter_mut()).enumerate() {
+                let one = m.draw(&t[i], &p[i], &s, r);
+                let pairs = [(d.u[0], one.u[0]), (d.u[1], one.u[1]), (d.u[2], one.u[2]), (d.duration, one.duration)];
+                if !pairs.iter().all(|(x, y)| same(*x, *y)) {
+                    return Err(format!("draws: batch {d:?} != one per particle {one:?} at point {i}"));
+                }
+            }
+            Ok(())
         }
         Built::WallFriction(m) => {
             let re = col(0);

@@ -32,6 +32,14 @@ pub(super) fn limit_name(l: Limit) -> (&'static str, String) {
         }
         Limit::Decreasing => ("decreasing", "main output non-increasing in its input".into()),
         Limit::Increasing => ("increasing", "main output non-decreasing in its input".into()),
+        Limit::StaticFriction { mu_s } => {
+            ("limit static", format!("mu -> mu_s = {} as the control number -> 0", number(mu_s)))
+        }
+        Limit::PackingDecreasing => ("packing decreasing", "phi non-increasing in the control number".into()),
+        Limit::WallLength { kappa } => {
+            ("limit wall", format!("l_m / z -> kappa = {} as z -> 0 in clear fluid", number(kappa)))
+        }
+        Limit::NonNegative => ("non-negative", "diffusivity D >= 0".into()),
         _ => ("limit", "unknown limit".into()),
     }
 }
@@ -52,7 +60,11 @@ pub(super) fn declared_limit(space: &ParamSpace, family: Family, index: usize, l
     let large = [1e4, 1e6, 1e8, 1e10, 1e12];
     let applies = match limit {
         Limit::Stokes { .. } | Limit::HighReynolds => family == Family::Drag,
-        Limit::Dilute => matches!(family, Family::Hindrance | Family::Viscosity),
+        // kinetic theory: g0 -> 1
+        Limit::Dilute => matches!(family, Family::Hindrance | Family::Viscosity | Family::Granular),
+        Limit::StaticFriction { .. } | Limit::PackingDecreasing => family == Family::Granular,
+        Limit::WallLength { .. } => family == Family::Turbulence,
+        Limit::NonNegative => family == Family::Fluctuation,
         Limit::Einstein { .. } => family == Family::Viscosity,
         Limit::Decreasing | Limit::Increasing => {
             matches!(
@@ -67,6 +79,46 @@ pub(super) fn declared_limit(space: &ParamSpace, family: Family, index: usize, l
     }
     let increasing = matches!(limit, Limit::Increasing);
     match limit {
+        Limit::NonNegative => {
+            let prop = |m: &Built, x: &Vec<f64>| match m {
+                Built::Fluctuation(m) => {
+                    let (t, _, s) = evaluate::fluctuation_point(x);
+                    let d = m.diffusivity(&t, &s);
+                    // NaN fails too
+                    if d >= 0.0 {
+                        Ok(())
+                    } else {
+                        Err(format!("D = {}", number(d)))
+                    }
+                }
+                _ => Err("not applicable".into()),
+            };
+            let show = move |x: &Vec<f64>| show_inputs(family, x);
+            run_property(
+                name,
+                (space, family, opts),
+                inputs(family),
+                show,
+                prop,
+                format!("{what}: {} cases", opts.cases),
+            )
+        }
+        Limit::PackingDecreasing => {
+            let pair: BoxedStrategy<Vec<f64>> = vec![log_uniform(1e-8, 1e3), log_uniform(1e-6, 1e2)].boxed();
+            let show = |x: &Vec<f64>| format!("x = {}, x * (1 + {})", number(x[0]), number(x[1]));
+            let prop = |m: &Built, x: &Vec<f64>| {
+                let Built::Granular(m) = m else { return Err("not applicable".into()) };
+                let l = m.as_local().ok_or("the packing is checked on local rheologies (phi of I or K)")?;
+                let x2 = x[0] * (1.0 + x[1]);
+                let (a, b) = (l.packing(x[0]), l.packing(x2));
+                if b <= a + 1e-12 * a.abs().max(b.abs()) {
+                    Ok(())
+                } else {
+                    Err(format!("phi = {} at {} then {} at {}", number(a), number(x[0]), number(b), number(x2)))
+                }
+            };
+            run_property(name, (space, family, opts), pair, show, prop, format!("{what}: {} pairs", opts.cases))
+        }
         Limit::Decreasing | Limit::Increasing => {
             // two inputs x1 < x2 (and the other inputs shared)
             let pair: BoxedStrategy<Vec<f64>> = match family {
@@ -139,6 +191,30 @@ pub(super) fn declared_limit(space: &ParamSpace, family: Family, index: usize, l
                 (Built::Viscosity(m), Limit::Dilute) => {
                     let phi = small.map(|p| p * m.phi_limit().min(1.0));
                     tends_to("nu_eff/nu_f", &phi, &phi.map(|p| m.ratio(p)), 1.0)
+                }
+                (Built::Granular(m), Limit::StaticFriction { mu_s }) => {
+                    let l = m.as_local().ok_or("the static friction is checked on local rheologies (mu of I or K)")?;
+                    tends_to("mu", &small, &small.map(|x| l.friction(x)), mu_s)?;
+                    // at rest itself, I = 0 (a state of no shear)
+                    let at_rest = l.friction(0.0);
+                    if (at_rest - mu_s).abs() <= 1e-12 * mu_s.abs().max(1.0) {
+                        Ok(())
+                    } else {
+                        Err(format!("mu = {} at 0, not mu_s = {}", number(at_rest), number(mu_s)))
+                    }
+                }
+                (Built::Granular(m), Limit::Dilute) => {
+                    let k =
+                        m.as_kinetic().ok_or("the dilute limit of a granular stress is g0 -> 1 of kinetic theory")?;
+                    let phi = small.map(|p| p * k.phi_max());
+                    tends_to("g0", &phi, &phi.map(|p| k.coefficients(p, None).g0), 1.0)
+                }
+                (Built::Turbulence(m), Limit::WallLength { kappa }) => {
+                    // clear-fluid columns of 20 cells ever thinner: l_m / z of the first cell
+                    let heights = small.map(|h| 10.0 * h);
+                    let ratios = heights.map(|h| evaluate::wall_ratio(m.as_ref(), h));
+                    let z = heights.map(|h| h / 40.0);
+                    tends_to("l_m / z", &z, &ratios, kappa)
                 }
                 (Built::Viscosity(m), Limit::Einstein { coefficient }) => {
                     let phi = small.map(|p| p * m.phi_limit().min(1.0));

@@ -9,8 +9,8 @@ use saltus_core::rng::stream;
 use saltus_core::runtime::{self, BatchFunction, Control, RuntimeModel, Variate, KINETIC_PARAMS};
 use saltus_core::scene::{closure_from_value, granular_from_value, Particles};
 use saltus_core::{
-    ColumnView, FlowScales, Fluctuation, GranularStress, KineticCoefficients, KineticTheory, LocalRheology, LocalState,
-    Needs, Param, ParticleSlip, SaltationInput, Turbulence, TurbulencePoint,
+    ColumnView, FlowScales, Fluctuation, FluctuationDraw, GranularStress, KineticCoefficients, KineticTheory,
+    LocalRheology, LocalState, Needs, Param, ParticleSlip, SaltationInput, Turbulence, TurbulencePoint,
 };
 
 use super::*;
@@ -298,35 +298,39 @@ fn a_mixing_length_is_the_built_in_li_sawamoto_bit_for_bit() {
     assert_eq!(a[0], 0.41 * z[0]);
 }
 
+/// The eddy interaction model as a law over arrays: the built-in draw with the
+/// handed-in variates (three normals, one exponential) in place of its own stream.
+fn eim_law(_: &[f64], x: &[&[f64]], out: &mut [&mut [f64]]) -> Result<usize, String> {
+    let m = EddyInteraction::default();
+    for i in 0..x[0].len() {
+        // the built-in draw with the handed-in variates in place of its own stream
+        let e = x[9][i];
+        let (ux, uy, uz, dur) = match m.lagrangian_time(x[1][i]) {
+            None => (0.0, 0.0, 0.0, f64::INFINITY),
+            Some(tl) => {
+                let t_e = m.c0 * tl * e;
+                if !(x[0][i].is_finite() && x[0][i] > 0.0) {
+                    (0.0, 0.0, 0.0, t_e)
+                } else {
+                    let s = (2.0 * x[0][i] / 3.0).sqrt();
+                    let p = ParticleSlip { slip: x[4][i], response_time: x[5][i] };
+                    let d = EddyInteraction::crossing_time(t_e * s, &p).map_or(t_e, |t_c| t_c.min(t_e));
+                    (s * x[6][i], s * x[7][i], s * x[8][i], d)
+                }
+            }
+        };
+        out[0][i] = ux;
+        out[1][i] = uy;
+        out[2][i] = uz;
+        out[3][i] = dur;
+    }
+    Ok(4)
+}
+
 #[test]
 fn a_particle_draw_with_the_eim_variates_is_the_built_in_eim() {
     let eim = EddyInteraction::default();
-    let draw = function(move |_, x, out| {
-        let m = EddyInteraction::default();
-        for i in 0..x[0].len() {
-            // the built-in draw with the handed-in variates in place of its own stream
-            let e = x[9][i];
-            let (ux, uy, uz, dur) = match m.lagrangian_time(x[1][i]) {
-                None => (0.0, 0.0, 0.0, f64::INFINITY),
-                Some(tl) => {
-                    let t_e = m.c0 * tl * e;
-                    if !(x[0][i].is_finite() && x[0][i] > 0.0) {
-                        (0.0, 0.0, 0.0, t_e)
-                    } else {
-                        let s = (2.0 * x[0][i] / 3.0).sqrt();
-                        let p = ParticleSlip { slip: x[4][i], response_time: x[5][i] };
-                        let d = EddyInteraction::crossing_time(t_e * s, &p).map_or(t_e, |t_c| t_c.min(t_e));
-                        (s * x[6][i], s * x[7][i], s * x[8][i], d)
-                    }
-                }
-            };
-            out[0][i] = ux;
-            out[1][i] = uy;
-            out[2][i] = uz;
-            out[3][i] = dur;
-        }
-        Ok(4)
-    });
+    let draw = function(eim_law);
     let diffusivity = function(|_, x, out| {
         let eim = EddyInteraction::default();
         for (i, o) in out[0].iter_mut().enumerate() {
@@ -363,4 +367,65 @@ fn a_particle_draw_with_the_eim_variates_is_the_built_in_eim() {
     eim.diffusivity_batch(&points, &s, &mut b);
     assert_eq!(a, b);
     assert!(a.iter().all(|&d| d >= 0.0));
+}
+
+#[test]
+fn a_chunk_of_draws_is_one_call_and_the_draws_of_one_call_per_particle_on_any_thread_count() {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    static CALLS: AtomicUsize = AtomicUsize::new(0);
+    let draw = function(|p, x, out| {
+        CALLS.fetch_add(1, Ordering::Relaxed);
+        eim_law(p, x, out)
+    });
+    let diffusivity = function(|_, _, out| {
+        out[0].fill(0.0);
+        Ok(1)
+    });
+    let variates = vec![Variate::Normal, Variate::Normal, Variate::Normal, Variate::Exponential];
+    let shape = Shape::Fluctuation { diffusivity, variates, needs: Needs::NONE };
+    register(Family::Fluctuation, "rt_eim_chunked", Vec::new(), draw, shape);
+    let f: Box<dyn Fluctuation> = closure_from_value(
+        table("type = \"rt_eim_chunked\""),
+        Family::Fluctuation,
+        Path::new("s.toml"),
+        "closures.fluctuation",
+    )
+    .unwrap();
+    let eim = EddyInteraction::default();
+    let s = FlowScales { depth: 0.1, bulk_velocity: 1.0 };
+    let n = 300;
+    let t: Vec<TurbulencePoint> = (0..n)
+        .map(|i| TurbulencePoint { k: 1e-4 * (i % 17) as f64, omega: 0.3 * (i % 23) as f64, ..Default::default() })
+        .collect();
+    let p: Vec<ParticleSlip> =
+        (0..n).map(|i| ParticleSlip { slip: 1e-3 * (i % 11) as f64, response_time: 0.05 }).collect();
+    let streams = || (0..n as u64).map(|i| stream(5, 1000 + i)).collect::<Vec<_>>();
+    // one chunk, one call
+    let mut one = streams();
+    let mut batch = vec![FluctuationDraw::default(); n];
+    let before = CALLS.load(Ordering::Relaxed);
+    f.draw_batch(&t, &p, &s, &mut one.iter_mut().collect::<Vec<_>>(), &mut batch);
+    assert_eq!(CALLS.load(Ordering::Relaxed) - before, 1);
+    // two threads, a chunk each
+    let mut two = streams();
+    let mut split = vec![FluctuationDraw::default(); n];
+    let h = n / 2 + 7;
+    let ((ta, tb), (pa, pb)) = (t.split_at(h), p.split_at(h));
+    let (ra, rb) = two.split_at_mut(h);
+    let (oa, ob) = split.split_at_mut(h);
+    std::thread::scope(|scope| {
+        let f = &f;
+        scope.spawn(move || f.draw_batch(ta, pa, &s, &mut ra.iter_mut().collect::<Vec<_>>(), oa));
+        scope.spawn(move || f.draw_batch(tb, pb, &s, &mut rb.iter_mut().collect::<Vec<_>>(), ob));
+    });
+    assert_eq!(batch, split);
+    // the built-in model, one draw per particle, from the same streams: the same draws,
+    // and every stream left at the same number (the DEM's random phase comes next)
+    let mut own = streams();
+    for i in 0..n {
+        assert_eq!(batch[i], eim.draw(&t[i], &p[i], &s, &mut own[i]), "particle {i}");
+        let next = |r: &mut saltus_core::rng::Rng| rand::Rng::gen::<u64>(r);
+        let (a, b, c) = (next(&mut one[i]), next(&mut two[i]), next(&mut own[i]));
+        assert!(a == c && b == c, "particle {i}");
+    }
 }

@@ -8,7 +8,9 @@
 //! particle's own seeded stream ([`saltus_core::rng::stream`]) and handed to the function
 //! as inputs, so a run is bit-reproducible for a seed on any thread count, and a function
 //! that declares the variates a built-in model takes, in its order, sees the same numbers
-//! (the eddy interaction model: three normals, then one exponential).
+//! (the eddy interaction model: three normals, then one exponential). A chunk of draws
+//! ([`Fluctuation::draw_batch`]) is one call of the function on arrays, each draw's
+//! variates from its own particle's stream.
 
 use rand::Rng as _;
 use rand_distr::{Distribution, Exp1, StandardNormal};
@@ -46,25 +48,53 @@ impl Fluctuation for RuntimeFluctuation {
     }
 
     fn draw(&self, t: &TurbulencePoint, p: &ParticleSlip, s: &FlowScales, rng: &mut Rng) -> FluctuationDraw {
+        let mut out = [FluctuationDraw::default()];
+        self.draw_batch(std::slice::from_ref(t), std::slice::from_ref(p), s, &mut [rng], &mut out);
+        out[0]
+    }
+
+    /// One call of the registered draw for the chunk: the variates of draw `j` are taken
+    /// from `rng[j]` in the declared order (all of one draw before the next stream), then
+    /// the function sees the chunk's inputs and variates as arrays.
+    fn draw_batch(
+        &self,
+        t: &[TurbulencePoint],
+        p: &[ParticleSlip],
+        s: &FlowScales,
+        rng: &mut [&mut Rng],
+        out: &mut [FluctuationDraw],
+    ) {
         let variates: &[Variate] = match &self.c.model.shape {
-            Shape::Fluctuation { variates, .. } => variates,
+            Shape::Fluctuation { variates, .. } => &variates[..variates.len().min(MAX_VARIATES)],
             _ => &[],
         };
-        let mut xi = [0.0; MAX_VARIATES];
-        for (x, v) in xi.iter_mut().zip(variates) {
-            *x = match v {
-                Variate::Normal => StandardNormal.sample(rng),
-                Variate::Exponential => Exp1.sample(rng),
-                Variate::Uniform => rng.gen::<f64>(),
-            };
+        let n = out.len().min(t.len()).min(p.len()).min(rng.len());
+        let mut xi = vec![vec![0.0; n]; variates.len()];
+        for (j, r) in rng.iter_mut().take(n).enumerate() {
+            for (x, v) in xi.iter_mut().zip(variates) {
+                x[j] = match v {
+                    Variate::Normal => StandardNormal.sample(&mut **r),
+                    Variate::Exponential => Exp1.sample(&mut **r),
+                    Variate::Uniform => r.gen::<f64>(),
+                };
+            }
         }
-        let point = [t.k, t.omega, t.nu_t, t.reynolds_stress, p.slip, p.response_time];
-        let mut inputs: Vec<&[f64]> = point.iter().map(std::slice::from_ref).collect();
-        inputs.extend(xi[..variates.len().min(MAX_VARIATES)].iter().map(std::slice::from_ref));
-        let mut u = [[0.0]; 4];
-        let [ux, uy, uz, duration] = &mut u;
+        let column = |f: &dyn Fn(usize) -> f64| (0..n).map(f).collect::<Vec<f64>>();
+        let point = [
+            column(&|j| t[j].k),
+            column(&|j| t[j].omega),
+            column(&|j| t[j].nu_t),
+            column(&|j| t[j].reynolds_stress),
+            column(&|j| p[j].slip),
+            column(&|j| p[j].response_time),
+        ];
+        let inputs: Vec<&[f64]> = point.iter().chain(&xi).map(|c| &c[..]).collect();
+        let mut u = vec![vec![0.0; n]; 4];
+        let [ux, uy, uz, duration] = &mut u[..] else { return };
         self.c.call_face(&*self.c.model.function, &[s.depth, s.bulk_velocity], &inputs, &mut [ux, uy, uz, duration]);
-        FluctuationDraw { u: [u[0][0], u[1][0], u[2][0]], duration: u[3][0] }
+        for (j, o) in out.iter_mut().take(n).enumerate() {
+            *o = FluctuationDraw { u: [u[0][j], u[1][j], u[2][j]], duration: u[3][j] };
+        }
     }
 
     fn diffusivity(&self, t: &TurbulencePoint, s: &FlowScales) -> f64 {

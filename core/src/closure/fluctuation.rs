@@ -93,6 +93,25 @@ pub trait Fluctuation: Describe + Send + Sync + std::fmt::Debug {
         None
     }
 
+    /// Draws for a chunk of particles: draw `j` at `t[j]`, `p[j]` from the stream
+    /// `rng[j]` of its particle, into `out[j]`. Each draw takes the numbers of its own
+    /// stream in the order [`Fluctuation::draw`] takes them, so the draws are those of one
+    /// call per particle whatever the chunking and the thread count. The default calls
+    /// [`Fluctuation::draw`] per particle; a model whose law is evaluated on arrays (a
+    /// closure written in Python) overrides it with one evaluation per chunk.
+    fn draw_batch(
+        &self,
+        t: &[TurbulencePoint],
+        p: &[ParticleSlip],
+        s: &FlowScales,
+        rng: &mut [&mut Rng],
+        out: &mut [FluctuationDraw],
+    ) {
+        for (((o, t), p), r) in out.iter_mut().zip(t).zip(p).zip(rng.iter_mut()) {
+            *o = self.draw(t, p, s, r);
+        }
+    }
+
     /// Diffusivity over a column.
     fn diffusivity_batch(&self, t: &[TurbulencePoint], s: &FlowScales, out: &mut [f64]) {
         for (o, tp) in out.iter_mut().zip(t) {

@@ -38,7 +38,7 @@ use rand::Rng as _;
 use saltus_core::grain::ball_volume;
 use saltus_core::rng::{stream, Rng};
 use saltus_core::scene::DragVelocity;
-use saltus_core::{DragLaw, FlowScales, Fluctuation, Hindrance, ParticleSlip, TurbulencePoint};
+use saltus_core::{DragLaw, FlowScales, Fluctuation, FluctuationDraw, Hindrance, ParticleSlip, TurbulencePoint};
 
 use rayon::prelude::*;
 
@@ -345,37 +345,57 @@ impl FluidForces {
             .for_each(|(c, ((k, urx, fluct, left, fresh, rng), (re, re_star, cd, hind, phi_p, ur), out))| {
                 let o = c * CHUNK;
                 let n = k.len();
-                for i in 0..n {
-                    let a = o + i;
-                    let z = p.z[a];
-                    let cell = field.cell(z);
-                    let mobile = a < nm;
-                    if let (Some(fl), true) = (models.fluctuation, mobile) {
+                // the fluctuation draws of the chunk, one batch: the mobile particles whose
+                // eddy expired, each from its own stream (the variates of its draw, then
+                // its random phase), so the draws do not depend on the chunking
+                if let Some(fl) = models.fluctuation {
+                    let mut due = Vec::new();
+                    let (mut points, mut slips) = (Vec::new(), Vec::new());
+                    for i in 0..n.min(nm.saturating_sub(o)) {
                         left[i] -= dt;
-                        if left[i] <= 0.0 {
-                            let [kf, wf] = &field.k_omega;
-                            let tp = TurbulencePoint {
-                                k: kf.get(cell).copied().unwrap_or(0.0),
-                                omega: wf.get(cell).copied().unwrap_or(0.0),
-                                nu_t: field.nu_t[cell],
-                                reynolds_stress: field.reynolds[cell],
-                            };
-                            // slip and response time of the last evaluation, for the eddy
-                            // crossing time of the eddy interaction model (Cheng eq 37)
-                            let [ax, ay, az] = ur[i];
-                            let slip = (ax * ax + ay * ay + az * az).sqrt();
-                            let d = 2.0 * p.radius[a];
-                            let response_time = if slip > 0.0 && cd[i] > 0.0 {
-                                4.0 * rho_p * d / (3.0 * rho_f * cd[i] * slip)
-                            } else {
-                                f64::INFINITY
-                            };
-                            let ps = ParticleSlip { slip, response_time };
-                            let draw = fl.draw(&tp, &ps, &field.scales, &mut rng[i]);
+                        if left[i] > 0.0 {
+                            continue;
+                        }
+                        let a = o + i;
+                        let cell = field.cell(p.z[a]);
+                        let [kf, wf] = &field.k_omega;
+                        points.push(TurbulencePoint {
+                            k: kf.get(cell).copied().unwrap_or(0.0),
+                            omega: wf.get(cell).copied().unwrap_or(0.0),
+                            nu_t: field.nu_t[cell],
+                            reynolds_stress: field.reynolds[cell],
+                        });
+                        // slip and response time of the last evaluation, for the eddy
+                        // crossing time of the eddy interaction model (Cheng eq 37)
+                        let [ax, ay, az] = ur[i];
+                        let slip = (ax * ax + ay * ay + az * az).sqrt();
+                        let d = 2.0 * p.radius[a];
+                        let response_time = if slip > 0.0 && cd[i] > 0.0 {
+                            4.0 * rho_p * d / (3.0 * rho_f * cd[i] * slip)
+                        } else {
+                            f64::INFINITY
+                        };
+                        slips.push(ParticleSlip { slip, response_time });
+                        due.push(i);
+                    }
+                    if !due.is_empty() {
+                        let mut draws = vec![FluctuationDraw::default(); due.len()];
+                        {
+                            let mut streams: Vec<&mut Rng> = Vec::with_capacity(due.len());
+                            let mut next = due.iter().peekable();
+                            for (i, r) in rng.iter_mut().enumerate() {
+                                if next.peek() == Some(&&i) {
+                                    streams.push(r);
+                                    next.next();
+                                }
+                            }
+                            fl.draw_batch(&points, &slips, &field.scales, &mut streams, &mut draws);
+                        }
+                        for (&i, draw) in due.iter().zip(&draws) {
                             fluct[i] = draw.u;
                             // the peer code's DRW spares the grains inside the bed; the draw
                             // is made all the same, so the random streams do not depend on it
-                            if z - field.base <= field.drw_floor {
+                            if p.z[o + i] - field.base <= field.drw_floor {
                                 fluct[i] = [0.0; 3];
                             }
                             left[i] = if !draw.duration.is_finite() {
@@ -392,6 +412,11 @@ impl FluidForces {
                             };
                         }
                     }
+                }
+                for i in 0..n {
+                    let a = o + i;
+                    let z = p.z[a];
+                    let cell = field.cell(z);
                     let uf = field.seen(models.velocity, z, p.radius[a]);
                     let u = [uf + fluct[i][0] - p.vx[a], fluct[i][1] - p.vy[a], fluct[i][2] - p.vz[a]];
                     let d = 2.0 * p.radius[a];
