@@ -3,7 +3,8 @@
 //! solver with the numerics of both solvers, and the output.
 //!
 //! Loading is done in stages so that every error names the file and the full key path:
-//! TOML syntax (line and column) -> tables where tables are expected -> base tables
+//! TOML syntax (line and column) -> tables where tables are expected -> the
+//! `accuracy` preset's keys where the scene gives none ([`Accuracy`]) -> base tables
 //! (serde_path_to_error) -> ranges of every key -> each closure table on its own (model
 //! name checked against the registry first, parameters with their full path) -> derived
 //! defaults -> closure needs -> what the active solver needs. `saltus check` and
@@ -17,6 +18,7 @@ mod domain;
 mod forcing;
 mod lagrangian;
 mod overrides;
+mod presets;
 mod python;
 pub mod shields;
 mod solver;
@@ -41,6 +43,7 @@ pub use lagrangian::{
     MAX_SIDE_DIAMETERS,
 };
 pub use overrides::{apply_override, parse_table};
+pub use presets::{Accuracy, Preset};
 pub use python::Python;
 pub use solver::{
     default_elastic_phi_rlp, Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver,
@@ -65,6 +68,10 @@ pub struct Scene {
     pub meta: Meta,
     /// random seed of every stochastic stream
     pub seed: u64,
+    /// the preset of the numerical defaults the scene chose ([`Accuracy`]); `None` when
+    /// it chose none (the defaults, as `"standard"`)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<Accuracy>,
     /// fluid
     pub fluid: Fluid,
     /// particles
@@ -237,6 +244,11 @@ impl Scene {
     /// to resolve reference paths).
     pub fn from_table(mut table: toml::Table, file: &Path) -> Result<Scene> {
         require_tables(&table, file)?;
+        // the preset's keys go in where the scene gives none, so that the scene's win
+        let accuracy = Accuracy::take(&mut table, file)?;
+        if let Some(a) = accuracy {
+            a.apply(&mut table);
+        }
         let python = table.remove("python").map(|v| Python::from_value(v, file)).transpose()?;
         // before the closures: their names are registered by the modules
         if let Some(p) = python.as_ref().filter(|_| !crate::runtime::python_host()) {
@@ -260,6 +272,7 @@ impl Scene {
         let mut scene = Scene {
             meta: base.meta,
             seed: base.seed,
+            accuracy,
             fluid: base.fluid,
             particles: base.particles,
             physics: base.physics,
@@ -305,12 +318,16 @@ impl Scene {
         if let Some(size) = self.domain.cell_size {
             self.resolve_cell_size(size.metres(d))?;
         }
+        let accuracy = self.accuracy.unwrap_or_default();
         if self.domain.cells.is_none() {
-            let n = self.domain.default_cells(d);
+            let n = accuracy.eulerian_cells(&self.domain, d).unwrap_or_else(|| self.domain.default_cells(d));
             // a default over the cap is left out, refused below only if the Eulerian runs
             self.domain.cells = (n <= MAX_CELLS).then_some(n);
         }
         let case = self.case();
+        if self.solver.lagrangian.cells.is_none() {
+            self.solver.lagrangian.cells = accuracy.fluid_cells(case.bed_height + case.water_depth, d);
+        }
         self.solver.lagrangian.resolve(&case);
         if self.particles.contact.stiffness.is_none() {
             let dry = self.solver.lagrangian.fluid == FluidMode::Off;
