@@ -106,7 +106,9 @@ fn profile_data() -> Option<Vec<Vec<(f64, f64)>>> {
                 .collect()
         });
         match rows {
-            Some(r) if r.len() == 70 && r.iter().all(|row| row.len() == 30 && row.iter().all(|v| v.is_finite())) => Some(r),
+            Some(r) if r.len() == 70 && r.iter().all(|row| row.len() == 30 && row.iter().all(|v| v.is_finite())) => {
+                Some(r)
+            }
             _ => {
                 saltus_core::data::missing(&f, "the sedimentation concentration profiles");
                 None

@@ -84,6 +84,29 @@ impl Stepper for Lagrangian<'_> {
         Ok(docs)
     }
 
+    /// The fields of the last fluid update, not the statistics' time averages that the
+    /// report writes: the volume fraction, the column's fluid velocity, the grains' mean
+    /// velocity and their flux density (m/s, summing to qs over the cells) per cell.
+    fn phase_profiles(&self) -> output::Profiles {
+        let n = self.cells();
+        let dz = self.dz();
+        let mut p = output::Profiles::default();
+        p.push("z", (0..n).map(|c| (c as f64 + 0.5) * dz).collect());
+        let flux = &self.state.sums.v[0];
+        let volume = self.cell_volume();
+        let fields: [(&str, &[f64]); 3] =
+            [("phi", &self.state.phi), ("u_f", &self.state.field.u), ("u_p", &self.state.u_p)];
+        for (name, values) in fields {
+            if values.len() == n {
+                p.push(name, values.to_vec());
+            }
+        }
+        if flux.len() == n && volume > 0.0 {
+            p.push("q_s", flux.iter().map(|f| f / volume).collect());
+        }
+        p
+    }
+
     /// The transport of the last fluid update (the particle sums it averaged), the largest
     /// fluid shear stress of the column, the level below which 1 % of that transport flows
     /// and the relative change of the steady-state windows. Without fluid there are no

@@ -290,6 +290,13 @@ pub trait Stepper {
         self.report(&Ending::EndTime, &Clock::default()).profiles
     }
 
+    /// Profiles of the state at this instant, which the phase averages bin: by default
+    /// those of [`Stepper::profiles`]. A solver whose reported profiles are time averages
+    /// (the DEM's, over its statistics window) gives here its last instantaneous fields.
+    fn phase_profiles(&self) -> Profiles {
+        self.profiles()
+    }
+
     /// Wall time (s) of each stage of the solver's steps so far, in this process.
     fn stages(&self) -> Vec<(&'static str, f64)> {
         Vec::new()

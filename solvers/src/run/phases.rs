@@ -283,7 +283,7 @@ impl Observer for PhaseAverages {
         if progress.phase == Phase::Flow {
             let t = progress.time;
             let due = (t - 0.5 * (t - self.last)) / self.period >= self.spin_up as f64;
-            let profiles = due.then(|| stepper.profiles());
+            let profiles = due.then(|| stepper.phase_profiles());
             self.add(t, stepper.sample().qs, profiles.as_ref());
         }
         Control::Continue
