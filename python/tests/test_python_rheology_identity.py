@@ -35,11 +35,22 @@ def mu_i_inverse(phi, mu_s, mu_2, i0, phi_c, b, **grain):
     return np.where(phi >= phi_c, 0.0, np.where(dilute, np.inf, x))
 
 
-# (scene, overrides): the dry incline is a DEM scene, run here in the Eulerian solver to its
-# end_time (300 s, 808 steps; not steady: the layer keeps accelerating); the sheet flows run
-# to steady (581 and 835 steps)
+# (scene, overrides): the dry incline is a DEM scene, run here in the Eulerian solver with the
+# settings of its compare file (cases/granular/compare_dry_incline_fit.toml: air, the DEM's
+# packing and bed, 100 cells) to its end time; the sheet flows run to steady (581 and 835
+# steps)
 SCENES = {
-    "dry_incline": ("cases/granular/dry_incline.toml", {"solver.type": "eulerian"}),
+    "dry_incline": (
+        "cases/granular/dry_incline.toml",
+        {
+            "solver.type": "eulerian",
+            "fluid.density": 1.2,
+            "fluid.viscosity": 1.5e-5,
+            "domain.bed_phi": 0.55,
+            "domain.bed_height": 0.07854545454545454,
+            "domain.cells": 100,
+        },
+    ),
     "revil_baudard_sheet_flow": ("cases/revil_baudard2015/sheet_flow_mu_i.toml", {}),
     "chassagne_case01": ("cases/chassagne2023/case01.toml", {}),
 }
