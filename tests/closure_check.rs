@@ -54,3 +54,34 @@ fn cli_bad_input_exits_2_naming_what_is_wrong() {
     let e = assert_clean_failure(&closure_check("drag", "{type = \"dallavalle\", a = -1.0}"));
     assert!(e.contains("model.a` = -1") && e.contains("(0, 100]"), "{e}");
 }
+
+#[test]
+fn built_ins_declare_their_limits_and_pass_them() {
+    use saltus_core::Family::{Fluctuation, Granular, Turbulence};
+    saltus::ensure_registry().unwrap();
+    let cases: [(saltus_core::Family, &str, &[&str]); 11] = [
+        (Granular, "type = \"mu_i\"", &["limit static", "packing decreasing", "increasing"]),
+        (Granular, "type = \"mu_k\"", &["limit static", "packing decreasing", "increasing"]),
+        (Granular, "type = \"frictional_collisional\"", &["limit dilute"]),
+        (Turbulence, "type = \"mixing_length\"", &["limit wall"]),
+        (Turbulence, "type = \"mixing_length\"\nform = \"prandtl\"", &["limit wall"]),
+        (Turbulence, "type = \"mixing_length\"\nbed = \"packed\"", &["limit wall"]),
+        (Turbulence, "type = \"parabolic\"", &["limit wall"]),
+        (Fluctuation, "type = \"drw\"", &["non-negative"]),
+        (Fluctuation, "type = \"eim\"", &["non-negative"]),
+        (Fluctuation, "type = \"schmidt\"", &["non-negative"]),
+        (Fluctuation, "type = \"none\"", &["non-negative"]),
+    ];
+    for (family, text, limits) in cases {
+        let table: toml::Value = text.parse::<toml::Table>().unwrap().into();
+        let r = saltus::check::check(family, table, saltus::check::Options { cases: 64 }).unwrap();
+        assert!(r.passed(), "{}", r.text());
+        let names: Vec<&str> = r.outcomes.iter().skip(4).map(|o| o.name.as_str()).collect();
+        assert_eq!(names, *limits, "{text}");
+    }
+    // no wall length: a grain-scale length that does not vanish at the wall
+    let table: toml::Value =
+        "type = \"mixing_length\"\nform = \"berzi_fraccarollo\"".parse::<toml::Table>().unwrap().into();
+    let r = saltus::check::check(Turbulence, table, saltus::check::Options { cases: 16 }).unwrap();
+    assert!(!r.outcomes.iter().any(|o| o.name == "limit wall"), "{}", r.text());
+}

@@ -4,7 +4,8 @@ use rand_distr::{Distribution, StandardNormal};
 use saltus_core::closure::Family;
 use saltus_core::rng::Rng;
 use saltus_core::{
-    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Needs, ParticleSlip, TurbulencePoint,
+    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Limit, Needs, ParticleSlip,
+    TurbulencePoint,
 };
 use serde::{Deserialize, Serialize};
 
@@ -67,12 +68,14 @@ use saltus_core::DriftForm;
 /// * The model returns full periods; a solver that starts every particle with a fresh
 ///   eddy at the same instant synchronises them, so it should shorten the first duration
 ///   by a uniform random fraction (random phase), as the diffusivity test does.
+/// * Declared limit: D >= 0 (the stress is clamped at 0 and tau is positive or D = 0).
 #[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
 #[describe(
     name = "drw",
     source = "Maurin et al. 2015 eqs 15-16",
-    equation = "u_z = l1, u_x = -u_z + l2, l1,l2 ~ N(0, R_xz/(rho_f eps)), held tau = depth/U; D = sigma^2 tau/2"
+    equation = "u_z = l1, u_x = -u_z + l2, l1,l2 ~ N(0, R_xz/(rho_f eps)), held tau = depth/U; D = sigma^2 tau/2",
+    limits = [Limit::NonNegative]
 )]
 pub struct DiscreteRandomWalk {
     /// fixed redraw period

@@ -4,7 +4,8 @@ use rand_distr::{Distribution, Exp1, StandardNormal};
 use saltus_core::closure::Family;
 use saltus_core::rng::Rng;
 use saltus_core::{
-    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Needs, ParticleSlip, TurbulencePoint,
+    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Limit, Needs, ParticleSlip,
+    TurbulencePoint,
 };
 use serde::{Deserialize, Serialize};
 
@@ -57,12 +58,14 @@ use saltus_core::DriftForm;
 ///   crossing, whose time would be 0 for a zero-size eddy), so the particle redraws once
 ///   the flow turns turbulent; D = 0.
 /// * Crossing needs slip > 0; a non-finite response time uses the limit t_c = l_e / slip.
+/// * Declared limit: D >= 0 (k > 0, omega > 0 and C0, C_mu positive, or D = 0).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
 #[describe(
     name = "eim",
     source = "Cheng, Chauchat, Hsu & Calantoni, section 2.4, eqs 36-37, table 1",
-    equation = "u_i = sqrt(2k/3) N(0,1), t = min(-C0 ln(1-xi)/(6 C_mu omega), -t_p ln(1 - l_e/(slip t_p))); D = C0 k/(9 C_mu omega)"
+    equation = "u_i = sqrt(2k/3) N(0,1), t = min(-C0 ln(1-xi)/(6 C_mu omega), -t_p ln(1 - l_e/(slip t_p))); D = C0 k/(9 C_mu omega)",
+    limits = [Limit::NonNegative]
 )]
 pub struct EddyInteraction {
     /// eddy lifetime coefficient C0

@@ -3,7 +3,7 @@
 use saltus_core::closure::Family;
 use saltus_core::rng::Rng;
 use saltus_core::{
-    register_model, Describe, FlowScales, Fluctuation, FluctuationDraw, Needs, ParticleSlip, TurbulencePoint,
+    register_model, Describe, FlowScales, Fluctuation, FluctuationDraw, Limit, Needs, ParticleSlip, TurbulencePoint,
 };
 use serde::{Deserialize, Serialize};
 
@@ -17,12 +17,14 @@ use serde::{Deserialize, Serialize};
 /// * Valid range: any flow, laminar included; it needs no turbulence field.
 /// * Decision: [`Fluctuation::is_active`] is false so that the solver pays for no random
 ///   number and no drift velocity; `draw` consumes no random number.
+/// * Declared limit: D >= 0 (D = 0).
 #[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
 #[describe(
     name = "none",
     source = "Maurin et al. 2015 without eqs 15-16; Chassagne et al. 2023 without eqs 4.3-4.4",
-    equation = "u' = 0, D = 0"
+    equation = "u' = 0, D = 0",
+    limits = [Limit::NonNegative]
 )]
 pub struct NoFluctuation {}
 

@@ -4,7 +4,8 @@ use rand_distr::{Distribution, Exp1, StandardNormal};
 use saltus_core::closure::Family;
 use saltus_core::rng::Rng;
 use saltus_core::{
-    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Needs, ParticleSlip, TurbulencePoint,
+    register_model, Describe, Field, FlowScales, Fluctuation, FluctuationDraw, Limit, Needs, ParticleSlip,
+    TurbulencePoint,
 };
 use serde::{Deserialize, Serialize};
 
@@ -36,12 +37,14 @@ use saltus_core::DriftForm;
 /// * No fluctuation where nu_t or the Reynolds stress is not positive and finite: u' = 0,
 ///   D = 0, and the draw holds forever (like `drw` without a turnover time); a solver
 ///   starting from rest should redraw when the flow develops.
+/// * Declared limit: D >= 0 (nu_t > 0 and Sc > 0, or D = 0).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
 #[describe(
     name = "schmidt",
     source = "Chassagne et al. 2023 eqs 4.3-4.4; Cheng et al. eq 40",
-    equation = "D = nu_t / Sc; u_i = sqrt(R_xz) N(0,1) held Exp(nu_t/(Sc R_xz))"
+    equation = "D = nu_t / Sc; u_i = sqrt(R_xz) N(0,1) held Exp(nu_t/(Sc R_xz))",
+    limits = [Limit::NonNegative]
 )]
 pub struct Schmidt {
     /// Schmidt number Sc = nu_t / D

@@ -21,13 +21,15 @@ use serde::{Deserialize, Serialize};
 /// * Decisions: I = 0 when |gamma_dot| = 0 (whatever p); I = +inf when p <= 0 and
 ///   |gamma_dot| > 0 (no confinement: the free-flight limit, mu = mu_2, phi = 0). Both
 ///   `friction` and `packing` accept +inf and return those limits; never NaN for I >= 0.
+/// * Declared limits: mu -> `mu_s` as I -> 0 (and mu(0) = mu_s), phi non-increasing in I
+///   (b >= 0), mu non-decreasing in I (mu_2 > mu_s).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
 #[describe(
     name = "mu_i",
     source = "Chassagne et al. 2023 eqs 1.1-1.2; Maurin, Chauchat & Frey 2016",
     equation = "mu = mu_s + (mu_2 - mu_s)/(i0/I + 1), phi = phi_c/(1 + b I), I = d |gamma_dot| / sqrt(p/rho_p)",
-    limits = [Limit::Increasing]
+    limits = [Limit::StaticFriction { mu_s: self.mu_s }, Limit::PackingDecreasing, Limit::Increasing]
 )]
 pub struct MuI {
     /// static friction coefficient (I -> 0)

@@ -22,13 +22,16 @@ use serde::{Deserialize, Serialize};
 /// * Decisions: K = 0 when |gamma_dot| = 0; K = +inf when p <= 0 and |gamma_dot| > 0
 ///   (mu = mu_2, phi = 0), as for `mu_i`. mu(phi) is clamped to phi in [0, phi_c]
 ///   (mu_2 at phi = 0, mu_1 at and above phi_c).
+/// * Declared limits: mu -> `mu_1`, the quasi-static friction, as K -> 0 (and mu(0) = mu_1;
+///   mu - mu_1 ~ sqrt(K / K0) on the way), phi non-increasing in K (b > 0), mu
+///   non-decreasing in K (mu_2 > mu_1).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
 #[describe(
     name = "mu_k",
     source = "Fry, Lacaze et al. 2024 eqs 34-39; Trulsson, Andreotti & Claudin 2012",
     equation = "mu = mu_1 + (mu_2 - mu_1)/(1 + sqrt(K0/K)), phi = phi_c/(1 + b sqrt(K)), K = |gamma_dot| eta_f/p + alpha I^2",
-    limits = [Limit::Increasing]
+    limits = [Limit::StaticFriction { mu_s: self.mu_1 }, Limit::PackingDecreasing, Limit::Increasing]
 )]
 pub struct MuK {
     /// jamming volume fraction (K = 0)

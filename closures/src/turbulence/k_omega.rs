@@ -107,6 +107,10 @@ pub enum KOmegaWall {
 ///   the bed (weight Gamma of eq 32) k = 0 and omega = omega_bed, the state the in-bed
 ///   relaxation of eq 26 and the drag damping of eq 21 lead to (no shear, no production),
 ///   rather than a bed as turbulent as the flow above it.
+/// * No declared limit: its mixing length sqrt(k)/omega comes from the transported k and
+///   omega, not from the distance to the wall, so l_m -> kappa z at a wall does not hold by
+///   construction (in the viscous sublayer k ~ z^2 and omega ~ 6 nu/(0.075 z^2), l_m ~ z^3;
+///   kappa z is only approached in the log layer).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
 #[describe(

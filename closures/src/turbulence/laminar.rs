@@ -16,6 +16,8 @@ use serde::{Deserialize, Serialize};
 ///   viscosity or Reynolds stress. A fluctuation model (`drw`, `eim`) on laminar flow is
 ///   meaningless, so the scene check refuses it instead of silently drawing zero
 ///   fluctuations. The solver still gets nu_t = 0 from [`Turbulence::eddy_viscosity`].
+/// * No declared limit: l_m = 0 everywhere, so l_m / z -> kappa at the wall does not hold
+///   (no turbulent mixing near the wall or anywhere else).
 #[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
 #[describe(name = "laminar", source = "Chassagne et al. 2023 eq 2.7 with nu_t = 0", equation = "l_m = 0, nu_t = 0")]

@@ -1,7 +1,7 @@
 //! Algebraic mixing-length turbulence closure (Prandtl, Li & Sawamoto, Berzi & Fraccarollo).
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, ColumnView, Describe, Field, Needs, Params, Turbulence};
+use saltus_core::{register_model, ColumnView, Describe, Field, Limit, Needs, Params, Turbulence};
 use serde::{Deserialize, Serialize};
 
 /// Which mixing-length profile [`MixingLength`] uses.
@@ -24,6 +24,17 @@ impl MixingLengthForm {
             Self::Prandtl => "Prandtl; Chassagne et al. 2023 eqs 2.7-2.8a",
             Self::LiSawamoto => "Chassagne et al. 2023 eqs 2.7-2.8; Maurin et al. 2015 eqs 4-5",
             Self::BerziFraccarollo => "Chassagne et al. 2023 eqs 2.8a and 4.2 (Berzi & Fraccarollo 2015)",
+        }
+    }
+
+    /// The limits this form declares with von Karman constant `kappa`: l_m / z -> kappa at
+    /// the wall in clear fluid for `prandtl` and `li_sawamoto` (whose integrand is 1 where
+    /// phi = 0), none for `berzi_fraccarollo`, whose length in clear fluid is the constant
+    /// max(coefficient phi_max^exponent, floor) d, whatever z.
+    pub fn limits(self, kappa: f64) -> Vec<Limit> {
+        match self {
+            Self::Prandtl | Self::LiSawamoto => vec![Limit::WallLength { kappa }],
+            Self::BerziFraccarollo => Vec::new(),
         }
     }
 
@@ -81,9 +92,18 @@ pub enum PackedBed {
 ///   [z/2, 2z] of the centre, true for any grid stretched by at most 2 between cells).
 /// * `berzi_fraccarollo` clamps phi_max - phi at 0 before the power, so a bed above
 ///   phi_max has the floor length.
+/// * Declared limits ([`MixingLengthForm::limits`]): l_m / z -> `kappa` at the wall in clear
+///   fluid for `prandtl` and `li_sawamoto` (either `bed`); none for `berzi_fraccarollo`, a
+///   length of the grains (in diameters) that does not vanish at the wall, so l_m / z
+///   grows without bound as z -> 0.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
-#[describe(name = "mixing_length", source = self.form.source(), equation = self.form.equation())]
+#[describe(
+    name = "mixing_length",
+    source = self.form.source(),
+    equation = self.form.equation(),
+    limits = self.form.limits(self.kappa)
+)]
 pub struct MixingLength {
     /// mixing-length profile
     pub form: MixingLengthForm,

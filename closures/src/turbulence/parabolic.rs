@@ -2,7 +2,7 @@
 //! Rouse benchmark).
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, ColumnView, Describe, Field, Needs, Turbulence};
+use saltus_core::{register_model, ColumnView, Describe, Field, Limit, Needs, Turbulence};
 use serde::{Deserialize, Serialize};
 
 /// Parabolic eddy viscosity through its mixing length
@@ -27,12 +27,15 @@ use serde::{Deserialize, Serialize};
 ///   turbulence closure (the point and column forms agree, and nu_t vanishes with the
 ///   shear). The viscous share lowers nu_t by about nu/2 near the wall: 0.5 % at z+ = 100.
 /// * Above z = h (a column taller than `depth`) l_m = 0.
+/// * Declared limit: l_m / z = kappa sqrt(1 - z/h) -> `kappa` as z -> 0, the law of the
+///   wall of the clear fluid (l_m does not depend on phi).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
 #[describe(
     name = "parabolic",
     source = "Rouse 1937 (Cheng et al. eq 38); docs/verification.md, benchmark 3",
-    equation = "nu_t = l^2 |du/dz|, l = kappa z sqrt(1 - z/h) (kappa u* z (1 - z/h) in a uniform channel)"
+    equation = "nu_t = l^2 |du/dz|, l = kappa z sqrt(1 - z/h) (kappa u* z (1 - z/h) in a uniform channel)",
+    limits = [Limit::WallLength { kappa: self.kappa }]
 )]
 pub struct Parabolic {
     /// friction velocity u*

@@ -3,7 +3,9 @@
 use std::fmt;
 
 use saltus_core::closure::Family;
-use saltus_core::{register_model, Describe, GranularStress, KineticCoefficients, KineticTheory, SaltationInput};
+use saltus_core::{
+    register_model, Describe, GranularStress, KineticCoefficients, KineticTheory, Limit, SaltationInput,
+};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::kinetic::{
@@ -104,12 +106,18 @@ impl<'de> Deserialize<'de> for StaticFriction {
 /// * Decisions: phi < 0 is evaluated as 0. For phi >= phi_max, g0, p_el, its derivative and
 ///   F1..F3 (and F4 unless e_eff = 1) are +inf, never NaN. F4 uses e_eff, F1..F3 the bare e.
 ///   The kinetic-part formulas are those of [`super::kinetic::garzo_dufty`].
+/// * Declared limits: g0 -> 1 as phi -> 0 (every `g0` form is Carnahan-Starling,
+///   1 + 5 phi / 2 + O(phi^2), the Chialvo-Sundaresan ones plus a term of order phi^2). Not declared: the static friction and the packing of a local
+///   rheology, since this model is no mu(I) law (its mu_s is the Coulomb ratio of the
+///   elastic stress, p_el = 0 below phi_rlp, and phi is an unknown of the temperature
+///   balance, not a function of a control number).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Describe)]
 #[serde(deny_unknown_fields, default)]
 #[describe(
     name = "frictional_collisional",
     source = "Chassagne, Bonamy & Chauchat 2023 eqs 2.12-2.25, table 1, 3.2-3.13, App. B-D; Garzo & Dufty 1999; Johnson & Jackson 1987",
-    equation = "p = P0 (phi-phi_rlp)^3/(phi_max-phi)^5 + rho_p F1 T, tau = mu_s p_el + rho_p d F2 sqrt(T) |gamma_dot|, Gamma = rho_p/d F4' T^1.5"
+    equation = "p = P0 (phi-phi_rlp)^3/(phi_max-phi)^5 + rho_p F1 T, tau = mu_s p_el + rho_p d F2 sqrt(T) |gamma_dot|, Gamma = rho_p/d F4' T^1.5",
+    limits = [Limit::Dilute]
 )]
 pub struct FrictionalCollisional {
     /// normal restitution coefficient e
