@@ -75,6 +75,34 @@ fn every_closures_file_loads_over_a_scene() {
     assert!(n >= 1, "no closures file under cases/");
 }
 
+/// Every compare file under `cases/` (a `base` scene and `[[variant]]` tables) loads, and
+/// every variant's scene (the base with the variant's closures file and overrides, as
+/// `saltus compare` resolves it) is accepted, without running any.
+#[test]
+fn every_compare_file_loads_and_its_variants_resolve() {
+    saltus_closures::link();
+    let root = cases_dir();
+    let mut all = Vec::new();
+    toml_files(&root, &mut all);
+    all.sort();
+    let mut files = 0;
+    for p in &all {
+        let table: toml::Table = std::fs::read_to_string(p).unwrap().parse().unwrap();
+        if !(table.contains_key("base") && table.contains_key("variant")) {
+            continue;
+        }
+        let cmp = saltus::compare::load(p, &[]).unwrap_or_else(|e| panic!("{}: {e:#}", p.display()));
+        for v in &cmp.variants {
+            Scene::from_file_with_closures(&cmp.base, &v.set, v.closures.as_deref())
+                .unwrap_or_else(|e| panic!("{}: variant `{}`: {e}", p.display(), v.name));
+        }
+        files += 1;
+    }
+    let peer = root.join("maurin2015/precision_dem_peer.toml");
+    assert!(all.contains(&peer), "{} missing", peer.display());
+    assert!(files >= 5, "{files} compare files under cases/");
+}
+
 fn solver_type(scene: &Scene) -> Option<String> {
     Some(scene.solver.kind.name().to_string())
 }
