@@ -11,7 +11,7 @@ use anyhow::{bail, Context};
 use plotters::element::ErrorBar;
 use plotters::prelude::*;
 
-use crate::plot::{self, Columns, Panel, COLORS};
+use crate::plot::{self, Columns, Panel, COLORS, PHI_PANEL, U_P_PANEL};
 use crate::table::Table;
 use saltus_solvers::run::phases::{PHASES, PHASE_PROFILES};
 
@@ -24,20 +24,8 @@ pub const PROFILE_FIGURE: &str = "phase_profiles.png";
 const SHOWN: [f64; 4] = [0.0, 0.25, 0.5, 0.75];
 
 const PROFILE_PANELS: [Panel; 3] = [
-    Panel {
-        title: "volume fraction",
-        x_desc: "phi [-]",
-        columns: &["phi"],
-        log_x: false,
-        legend: SeriesLabelPosition::UpperRight,
-    },
-    Panel {
-        title: "particle velocity",
-        x_desc: "u_p [m/s]",
-        columns: &["u_p"],
-        log_x: false,
-        legend: SeriesLabelPosition::UpperLeft,
-    },
+    PHI_PANEL,
+    U_P_PANEL,
     Panel {
         title: "fluid velocity",
         x_desc: "u_f [m/s]",

@@ -258,12 +258,21 @@ pub struct Panel {
     pub legend: SeriesLabelPosition,
 }
 
-const PHI_PANEL: Panel = Panel {
+/// The volume-fraction panel of the profile figures.
+pub const PHI_PANEL: Panel = Panel {
     title: "volume fraction",
     x_desc: "phi [-]",
     columns: &["phi"],
     log_x: false,
     legend: SeriesLabelPosition::UpperRight,
+};
+/// The particle-velocity panel of the profile figures.
+pub const U_P_PANEL: Panel = Panel {
+    title: "particle velocity",
+    x_desc: "u_p [m/s]",
+    columns: &["u_p"],
+    log_x: false,
+    legend: SeriesLabelPosition::UpperLeft,
 };
 const THETA_PANEL: Panel = Panel {
     title: "granular temperature",
@@ -287,17 +296,7 @@ pub const RUN_PANELS: [Panel; 3] = [
 ];
 
 /// Panels of `comparison.png` (several runs): phi; u_p; theta_g when present.
-pub const COMPARE_PANELS: [Panel; 3] = [
-    PHI_PANEL,
-    Panel {
-        title: "particle velocity",
-        x_desc: "u_p [m/s]",
-        columns: &["u_p"],
-        log_x: false,
-        legend: SeriesLabelPosition::UpperLeft,
-    },
-    THETA_PANEL,
-];
+pub const COMPARE_PANELS: [Panel; 3] = [PHI_PANEL, U_P_PANEL, THETA_PANEL];
 
 /// Particle-phase columns are drawn only where phi >= this (where phi is known): above
 /// the granular layer a particle velocity or temperature means nothing (the DEM reference

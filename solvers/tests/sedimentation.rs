@@ -53,10 +53,17 @@ fn interfaces(z: &[f64], phi: &[f64]) -> (f64, f64) {
     (upper, lower)
 }
 
-/// The run at `dt_max`: the interfaces at the data's times `t`, and the phi profiles on
-/// the cell centres at those times (both interpolated in time between the two steps that
-/// bracket each time), with the centres.
-fn run_with_profiles(dt_max: f64, t: &[f64]) -> (Vec<(f64, f64)>, Vec<Vec<f64>>, Vec<f64>) {
+/// A run at the data's times: the (upper, lower) interfaces, the phi profiles on the cell
+/// centres (both interpolated in time between the two steps that bracket each time), and
+/// the centres.
+struct Run {
+    interfaces: Vec<(f64, f64)>,
+    profiles: Vec<Vec<f64>>,
+    z: Vec<f64>,
+}
+
+/// The run at `dt_max`, sampled at the data's times `t`.
+fn run_with_profiles(dt_max: f64, t: &[f64]) -> Run {
     saltus_closures::link();
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let s = Scene::from_file_with(
@@ -85,11 +92,11 @@ fn run_with_profiles(dt_max: f64, t: &[f64]) -> (Vec<(f64, f64)>, Vec<Vec<f64>>,
     }
     assert_eq!(out.len(), t.len(), "the run ended at {} s", m.time());
     assert!(m.mass_error() < 1e-10, "mass error {:e}", m.mass_error());
-    (out, profiles, m.z().to_vec())
+    Run { interfaces: out, profiles, z: m.z().to_vec() }
 }
 
 fn run(dt_max: f64, t: &[f64]) -> Vec<(f64, f64)> {
-    run_with_profiles(dt_max, t).0
+    run_with_profiles(dt_max, t).interfaces
 }
 
 /// The measured concentration profiles: per data time, (height above the column's bottom
@@ -165,7 +172,7 @@ fn sedimentation_interfaces_follow_the_data() {
 #[test]
 fn sedimentation_profiles_follow_the_data() {
     let (Some((t, _, _)), Some(measured)) = (data(), profile_data()) else { return };
-    let (_, profiles, z) = run_with_profiles(0.5, &t);
+    let Run { profiles, z, .. } = run_with_profiles(0.5, &t);
     let mut sum = 0.0;
     for k in 1..t.len() {
         let rms = (measured[k].iter().map(|&(zk, p)| (interpolate(&z, &profiles[k], zk) - p).powi(2)).sum::<f64>()
