@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import saltus
+from laws import eim_diffusivity
 
 SHEET_FLOW = "cases/revil_baudard2015/mobile_bed_dem_k_omega_eim.toml"
 # 5 d x 5 d of the sheet flow (about 210 grains), the first 0.3 s
@@ -48,14 +49,6 @@ def eim_draw(k, omega, nu_t, reynolds_stress, slip, response_time, n_x, n_y, n_z
         u[:, j] = s * n_x[j], s * n_y[j], s * n_z[j]
         duration[j] = d
     return {"u_x": u[0], "u_y": u[1], "u_z": u[2], "duration": duration}
-
-
-def eim_diffusivity(k, omega, nu_t, reynolds_stress, c0, c_mu, depth, bulk_velocity):
-    """D = 2 k / 3 C0 T_L"""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        tl = 1.0 / (6.0 * c_mu * omega)
-        ok = np.isfinite(omega) & (omega > 0.0) & np.isfinite(tl) & np.isfinite(k) & (k > 0.0)
-        return np.where(ok, 2.0 * k / 3.0 * c0 * tl, 0.0)
 
 
 @pytest.fixture(scope="module", autouse=True)
