@@ -52,7 +52,7 @@ pub use solver::{
 use tables::STIFFNESS;
 pub use tables::{
     Contact, ContactModel, Drive, Fluid, Meta, NormalForce, Output, Particles, Physics, Reference, ShieldsWeight,
-    MAX_PHASES, MAX_SNAPSHOTS, MAX_TIMESERIES_ROWS, TIMESERIES_ROWS,
+    TangentialHistory, MAX_PHASES, MAX_SNAPSHOTS, MAX_TIMESERIES_ROWS, TIMESERIES_ROWS,
 };
 
 /// Packing the DEM counts the particles of a bed with when `domain.bed_phi` is absent.

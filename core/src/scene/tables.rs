@@ -79,6 +79,24 @@ pub enum NormalForce {
     Repulsive,
 }
 
+/// How the tangential spring of a contact (its history xi) follows the contact frame as
+/// the pair rolls and spins.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum TangentialHistory {
+    /// projected on the new tangent plane every step, xi - (xi . n) n: the spring
+    /// shortens by a factor cos(angle the normal turned), second order in the step, and
+    /// does not turn with the pair's spin about the normal
+    #[default]
+    Project,
+    /// turned with the contact: rotated onto the new tangent plane with its length kept,
+    /// then about the normal by the pair's mean spin about it, 0.5 (w_i + w_j) . n dt
+    /// (the objective update of YADE's `ScGeom::rotate`, described in the DEM formulation
+    /// chapter of Smilauer et al. 2015, the code the DEM of Maurin 2015 and Chassagne 2023
+    /// runs)
+    Rotate,
+}
+
 /// `[particles.contact]`: the contact law of the grains and its parameters.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -102,6 +120,9 @@ pub struct Contact {
     /// whether the normal force may pull (see [`NormalForce`])
     #[serde(default)]
     pub normal_force: NormalForce,
+    /// how the tangential spring follows the contact (see [`TangentialHistory`])
+    #[serde(default)]
+    pub tangential_history: TangentialHistory,
 }
 
 fn default_tangential_ratio() -> f64 {
@@ -123,6 +144,7 @@ impl Default for Contact {
             young: default_young(),
             poisson: default_poisson(),
             normal_force: NormalForce::SpringDashpot,
+            tangential_history: TangentialHistory::Project,
         }
     }
 }

@@ -24,6 +24,14 @@
 //! k_s = k_n / 2 there, k_s = k_n in Chassagne 2023 section 2.2). When the slider slips, xi
 //! is reset to the capped force over k_t.
 //!
+//! The option `particles.contact.tangential_history = "rotate"` turns xi with the contact
+//! instead of projecting it, as YADE does (`ScGeom::rotate`): xi is carried onto the new
+//! tangent plane with its length kept, then rotated about the normal by the angle
+//! 0.5 (w_i + w_j) . n dt the pair spins about it (Rodrigues' formula, exact for that
+//! angle). Projection shortens xi by cos(theta) per step, theta the angle the normal
+//! turned (second order in dt), and leaves xi fixed in space while both grains spin about
+//! their common normal, which is not objective; the rotated spring is.
+//!
 //! Collision time of a pair of equal particles of mass m: t_c = pi sqrt(m / (2 k_n)) /
 //! sqrt(1 - zeta^2); the time step is a safety factor times the undamped
 //! pi sqrt(m_min / (2 k_n)).
@@ -39,7 +47,7 @@
 //! restitution close to, not exactly, e. Time step: a safety factor times the Rayleigh
 //! time pi R sqrt(rho / G) / (0.1631 nu + 0.8766).
 
-pub use saltus_core::scene::{ContactModel, NormalForce};
+pub use saltus_core::scene::{ContactModel, NormalForce, TangentialHistory};
 
 /// Parameters of the contact law, resolved for the run.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -65,6 +73,9 @@ pub struct ContactLaw {
     /// the normal force is clipped at zero ([`NormalForce::Repulsive`])
     #[serde(default)]
     pub repulsive: bool,
+    /// the tangential spring turns with the contact ([`TangentialHistory::Rotate`])
+    #[serde(default)]
+    pub rotate_history: bool,
 }
 
 impl ContactLaw {
@@ -83,6 +94,7 @@ impl ContactLaw {
             zeta,
             hertz_damping: 0.0,
             repulsive: false,
+            rotate_history: false,
         }
     }
 
@@ -114,6 +126,12 @@ impl ContactLaw {
         self
     }
 
+    /// The law with the tangential spring's update `history`.
+    pub fn with_tangential_history(mut self, history: TangentialHistory) -> Self {
+        self.rotate_history = history == TangentialHistory::Rotate;
+        self
+    }
+
     /// Hertz-Mindlin law for identical spheres of Young modulus `young` (Pa) and Poisson
     /// ratio `poisson`.
     pub fn hertz(young: f64, poisson: f64, restitution: f64, friction: f64) -> Self {
@@ -131,6 +149,7 @@ impl ContactLaw {
             zeta: 0.0,
             hertz_damping: 2.0 * (5.0f64 / 6.0).sqrt() * beta.abs(),
             repulsive: false,
+            rotate_history: false,
         }
     }
 
@@ -166,6 +185,9 @@ pub(crate) struct ContactInput {
     pub sqrt_m: f64,
     /// effective radius R* (m), Hertz only
     pub r_eff: f64,
+    /// mean spin of the pair about n, 0.5 (w_i + w_j) . n (rad/s; the wall's and
+    /// cylinder's w is zero); read only by the rotated tangential spring
+    pub spin_n: f64,
 }
 
 /// Force on particle i (N), with the updated tangential history `h` (m), and the power
@@ -195,10 +217,17 @@ pub(crate) fn contact_force(law: &ContactLaw, c: &ContactInput, h: &mut [f64; 3]
     // a repulsive law ends the contact's pull: no force, no dashpot work
     let (fn_, mut power) = if law.repulsive && fn_ < 0.0 { (0.0, 0.0) } else { (fn_, damping * vn * vn) };
     let vt = [c.v_rel[0] - vn * n[0], c.v_rel[1] - vn * n[1], c.v_rel[2] - vn * n[2]];
-    // keep the spring in the tangent plane as the contact rolls
-    let hn = h[0] * n[0] + h[1] * n[1] + h[2] * n[2];
-    for k in 0..3 {
-        h[k] += vt[k] * dt - hn * n[k];
+    if law.rotate_history {
+        rotate_history(h, n, c.spin_n * dt);
+        for k in 0..3 {
+            h[k] += vt[k] * dt;
+        }
+    } else {
+        // keep the spring in the tangent plane as the contact rolls
+        let hn = h[0] * n[0] + h[1] * n[1] + h[2] * n[2];
+        for k in 0..3 {
+            h[k] += vt[k] * dt - hn * n[k];
+        }
     }
     let mut ft = [kt * h[0], kt * h[1], kt * h[2]];
     let ft2 = ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2];
@@ -214,6 +243,25 @@ pub(crate) fn contact_force(law: &ContactLaw, c: &ContactInput, h: &mut [f64; 3]
         }
     }
     ([-fn_ * n[0] + ft[0], -fn_ * n[1] + ft[1], -fn_ * n[2] + ft[2]], power)
+}
+
+/// Turn the spring `h` with its contact: onto the tangent plane of `n` with its length
+/// kept, then by `angle` (rad) about `n`.
+#[inline(always)]
+fn rotate_history(h: &mut [f64; 3], n: [f64; 3], angle: f64) {
+    let len2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+    let hn = h[0] * n[0] + h[1] * n[1] + h[2] * n[2];
+    let mut p = [h[0] - hn * n[0], h[1] - hn * n[1], h[2] - hn * n[2]];
+    let p2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+    // a spring along the new normal has no direction in the plane to keep: it is dropped
+    let scale = if p2 > 0.0 { (len2 / p2).sqrt() } else { 0.0 };
+    // Rodrigues about n, p being normal to it: p cos a + (n x p) sin a
+    let (s, c) = angle.sin_cos();
+    let q = cross(n, p);
+    for k in 0..3 {
+        p[k] = scale * (p[k] * c + q[k] * s);
+    }
+    *h = p;
 }
 
 #[inline(always)]
@@ -254,7 +302,7 @@ mod tests {
         #[test]
         fn a_repulsive_contact_never_pulls(delta in 1e-9f64..1e-4, vn in -10.0f64..10.0) {
             let law = ContactLaw::linear(1e4, 1e4, 0.7, 0.4).with_normal_force(NormalForce::Repulsive);
-            let c = ContactInput { n: [0.0, 0.0, 1.0], delta, v_rel: [0.0, 0.0, vn], sqrt_m: 0.01, r_eff: 0.003 };
+            let c = ContactInput { n: [0.0, 0.0, 1.0], delta, v_rel: [0.0, 0.0, vn], sqrt_m: 0.01, r_eff: 0.003, spin_n: 0.0 };
             let (f, power) = contact_force(&law, &c, &mut [0.0; 3], 1e-4);
             // force on i along -n: repulsion pushes i away from j (f_z <= 0), never towards it
             prop_assert!(f[2] <= 0.0 && power >= 0.0);
@@ -265,7 +313,7 @@ mod tests {
         #[test]
         fn coulomb_cap_holds(delta in 1e-9f64..1e-4, vt in -10.0f64..10.0, mu in 0.0f64..2.0) {
             let law = ContactLaw::linear(1e4, 1e4, 0.7, mu);
-            let c = ContactInput { n: [0.0, 0.0, 1.0], delta, v_rel: [vt, 0.0, 0.0], sqrt_m: 0.01, r_eff: 0.003 };
+            let c = ContactInput { n: [0.0, 0.0, 1.0], delta, v_rel: [vt, 0.0, 0.0], sqrt_m: 0.01, r_eff: 0.003, spin_n: 0.0 };
             let mut h = [0.0; 3];
             let f = contact_force(&law, &c, &mut h, 1e-4).0;
             let fn_ = -f[2];
@@ -279,10 +327,94 @@ mod tests {
     fn hertz_elastic_force() {
         // F = (4/3) E* sqrt(R*) delta^{3/2} at zero normal velocity
         let law = ContactLaw::hertz(1e7, 0.3, 0.7, 0.4);
-        let c = ContactInput { n: [0.0, 0.0, 1.0], delta: 1e-6, v_rel: [0.0; 3], sqrt_m: 0.01, r_eff: 1.5e-3 };
+        let c =
+            ContactInput { n: [0.0, 0.0, 1.0], delta: 1e-6, v_rel: [0.0; 3], sqrt_m: 0.01, r_eff: 1.5e-3, spin_n: 0.0 };
         let f = contact_force(&law, &c, &mut [0.0; 3], 1e-6).0;
         let e_star = 1e7 / (2.0 * (1.0 - 0.09));
         let expected = 4.0 / 3.0 * e_star * (1.5e-3f64).sqrt() * 1e-9;
         assert!((-f[2] / expected - 1.0).abs() < 1e-12);
+    }
+
+    /// A loaded spring of a pair that spins rigidly about its normal (both grains at w
+    /// along n, no relative motion of the contact points): the rotated spring turns with
+    /// the grains, by w t exactly, and keeps its length; the projected one stays put.
+    #[test]
+    fn a_rotated_spring_turns_with_a_pair_spinning_about_its_normal() {
+        let (w, dt, steps) = (50.0, 1e-5, 2000);
+        let h0 = [1e-6, 0.0, 0.0];
+        for rotate in [false, true] {
+            let history = if rotate { TangentialHistory::Rotate } else { TangentialHistory::Project };
+            let law = ContactLaw::linear(1e4, 1e4, 0.7, 1e6).with_tangential_history(history);
+            let c = ContactInput {
+                n: [0.0, 0.0, 1.0],
+                delta: 1e-4,
+                v_rel: [0.0; 3],
+                sqrt_m: 0.01,
+                r_eff: 0.003,
+                spin_n: w,
+            };
+            let mut h = h0;
+            let mut f = [0.0; 3];
+            for _ in 0..steps {
+                f = contact_force(&law, &c, &mut h, dt).0;
+            }
+            let angle: f64 = w * dt * steps as f64;
+            let expected = if rotate { [1e-6 * angle.cos(), 1e-6 * angle.sin(), 0.0] } else { h0 };
+            for k in 0..3 {
+                assert!((h[k] - expected[k]).abs() < 1e-15, "rotate {rotate}: {h:?} against {expected:?}");
+            }
+            // the tangential force is the spring's
+            for k in 0..2 {
+                assert!((f[k] - law.kt * h[k]).abs() < 1e-12);
+            }
+        }
+    }
+
+    /// A pair whose normal turns a quarter turn about an axis in the tangent plane, the
+    /// contact points moving with it (v_rel = 0): the exact spring turns rigidly with
+    /// the normal. The rotated spring keeps its length to rounding and its direction to
+    /// first order in the step; the projected one loses, per step, the factor cos of the
+    /// step's angle on its component along the turn.
+    #[test]
+    fn a_rotated_spring_keeps_its_length_as_the_normal_turns() {
+        let quarter = std::f64::consts::FRAC_PI_2;
+        // h0 normal to n0 = z: one part along the rotation axis y, one along x
+        let h0: [f64; 3] = [1e-6, 2e-6, 0.0];
+        let len0 = (h0[0] * h0[0] + h0[1] * h0[1]).sqrt();
+        let mut errors = Vec::new();
+        for steps in [500usize, 2000] {
+            let step = quarter / steps as f64;
+            for rotate in [false, true] {
+                let history = if rotate { TangentialHistory::Rotate } else { TangentialHistory::Project };
+                let law = ContactLaw::linear(1e4, 1e4, 0.7, 1e6).with_tangential_history(history);
+                let mut h = h0;
+                for s in 1..=steps {
+                    let t = step * s as f64;
+                    let n = [t.sin(), 0.0, t.cos()];
+                    let c = ContactInput { n, delta: 1e-4, v_rel: [0.0; 3], sqrt_m: 0.01, r_eff: 0.003, spin_n: 0.0 };
+                    contact_force(&law, &c, &mut h, 1e-5);
+                }
+                // rigid quarter turn about y: x -> -z, y stays
+                let exact = [0.0, h0[1], -h0[0]];
+                let len = (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]).sqrt();
+                let err = ((h[0] - exact[0]).powi(2) + (h[1] - exact[1]).powi(2) + (h[2] - exact[2]).powi(2)).sqrt();
+                if rotate {
+                    assert!((len / len0 - 1.0).abs() < 1e-12, "{len} against {len0}");
+                } else {
+                    // the x part shrinks by cos(step)^steps
+                    let kept = step.cos().powi(steps as i32);
+                    let expected = (h0[0] * h0[0] * kept * kept + h0[1] * h0[1]).sqrt();
+                    assert!((len / expected - 1.0).abs() < 1e-9, "{len} against {expected}");
+                    assert!(len < len0);
+                }
+                errors.push((steps, rotate, err / len0));
+            }
+        }
+        // both converge to the rigid turn at first order: 4x the steps, about 4x less error
+        for rotate in [false, true] {
+            let e: Vec<f64> = errors.iter().filter(|e| e.1 == rotate).map(|e| e.2).collect();
+            let ratio = e[0] / e[1];
+            assert!(e[0] < 1e-2 && (3.0..5.0).contains(&ratio), "rotate {rotate}: errors {e:?}");
+        }
     }
 }

@@ -125,7 +125,15 @@ impl HalfCylinders {
             let n = [d[0] / dist, 0.0, d[2] / dist];
             let spin = cross([s.r * s.w[0], s.r * s.w[1], s.r * s.w[2]], n);
             let v_rel = [-s.v[0] - spin[0], -s.v[1] - spin[1], -s.v[2] - spin[2]];
-            let c = ContactInput { n, delta: reach - dist, v_rel, sqrt_m: s.sqrt_m, r_eff: s.r * self.radius / reach };
+            let spin_n = 0.5 * (s.w[0] * n[0] + s.w[1] * n[1] + s.w[2] * n[2]);
+            let c = ContactInput {
+                n,
+                delta: reach - dist,
+                v_rel,
+                sqrt_m: s.sqrt_m,
+                r_eff: s.r * self.radius / reach,
+                spin_n,
+            };
             let (fc, power) = contact_force(law, &c, &mut hist[slot].1, dt);
             let tc = cross(n, fc);
             for c in 0..3 {

@@ -224,8 +224,9 @@ impl Dem {
         let np = self.list.len();
         self.work.pair_f.resize(np, [0.0; 3]);
         self.work.pair_t.resize(np, [0.0; 3]);
-        // the linear law in three passes, its force loop vectorised ([`super::pairs`])
-        let lanes = self.law.model == ContactModel::Linear;
+        // the linear law in three passes, its force loop vectorised ([`super::pairs`]);
+        // the rotated spring, an option for studies of the contact law, pair by pair
+        let lanes = self.law.model == ContactModel::Linear && !self.law.rotate_history;
         let p = &self.p;
         let l = &mut self.list;
         let view = PairView {
@@ -375,7 +376,8 @@ impl Dem {
                         n[wall.axis] = -wall.sign;
                         let spin = cross([ra * wx[k], ra * wy[k], ra * wz[k]], n);
                         let v_rel = [-vx[k] - spin[0], -vy[k] - spin[1], -vz[k] - spin[2]];
-                        let c = ContactInput { n, delta, v_rel, sqrt_m: (1.0 / inv_m[a]).sqrt(), r_eff: ra };
+                        let spin_n = 0.5 * (wx[k] * n[0] + wy[k] * n[1] + wz[k] * n[2]);
+                        let c = ContactInput { n, delta, v_rel, sqrt_m: (1.0 / inv_m[a]).sqrt(), r_eff: ra, spin_n };
                         let (fw, power) = contact_force(wall_law, &c, h, dt);
                         let tw = cross(n, fw);
                         if let Some(rec) = rec.as_deref_mut() {

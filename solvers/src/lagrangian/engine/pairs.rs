@@ -75,7 +75,13 @@ impl PairView<'_> {
         let arm = [ra * wx[a] + rb * wx[b], ra * wy[a] + rb * wy[b], ra * wz[a] + rb * wz[b]];
         let spin = cross(arm, n);
         let v_rel = [vx[b] - vx[a] - spin[0], vy[b] - vy[a] - spin[1], vz[b] - vz[a] - spin[2]];
-        let c = ContactInput { n, delta: reach - dist, v_rel, sqrt_m: self.sqrt_m[q], r_eff: self.r_eff[q] };
+        // the rotated spring's twist; the branch is the same for every pair of a run
+        let spin_n = if self.law.rotate_history {
+            0.5 * ((wx[a] + wx[b]) * n[0] + (wy[a] + wy[b]) * n[1] + (wz[a] + wz[b]) * n[2])
+        } else {
+            0.0
+        };
+        let c = ContactInput { n, delta: reach - dist, v_rel, sqrt_m: self.sqrt_m[q], r_eff: self.r_eff[q], spin_n };
         let (f, power) = contact_force(self.law, &c, h, self.dt);
         Some((d, n, f, power))
     }

@@ -5,7 +5,7 @@
 use saltus_core::scene::{LagrangianSettings, Scene, DEM_BED_PHI};
 use saltus_core::Error;
 
-use crate::lagrangian::engine::contact::{ContactModel, NormalForce};
+use crate::lagrangian::engine::contact::{ContactModel, NormalForce, TangentialHistory};
 
 pub use saltus_core::scene::{Bottom, FluidMode, Initial, ParticleSpec, Surface};
 
@@ -45,6 +45,8 @@ pub struct Settings {
     pub poisson: f64,
     /// whether the normal force may pull
     pub normal_force: NormalForce,
+    /// how the tangential spring follows the contact
+    pub tangential_history: TangentialHistory,
     /// normal restitution coefficient e
     pub restitution: f64,
     /// particle friction coefficient mu_p
@@ -97,6 +99,7 @@ impl Config {
             young: p.contact.young,
             poisson: p.contact.poisson,
             normal_force: p.contact.normal_force,
+            tangential_history: p.contact.tangential_history,
             restitution: p.restitution,
             friction: p.friction,
             settle_time: match l.settle_time {

@@ -83,7 +83,8 @@ impl<'a> Lagrangian<'a> {
             }
             ContactModel::Hertz => ContactLaw::hertz(s.young, s.poisson, s.restitution, s.friction),
         }
-        .with_normal_force(s.normal_force);
+        .with_normal_force(s.normal_force)
+        .with_tangential_history(s.tangential_history);
         let m = rho_p * sphere_volume(d);
         let dt = s.numerics.dt_safety * law.contact_time(m, 0.5 * d, rho_p, s.young, s.poisson);
         let body = setup::body_acceleration(
