@@ -41,13 +41,14 @@ pub const TABLE: &str = "comparison.csv";
 pub const FIGURE: &str = "comparison.png";
 
 /// Columns of the comparison table, after `variant` and before `error`.
-pub const COLUMNS: [&str; 13] = [
+pub const COLUMNS: [&str; 14] = [
     "solver",
     "qs_star",
     "qs",
     "shields",
     "bed_height",
     "transport_layer_thickness",
+    "flux_layer_thickness",
     "steady",
     "sim_time_s",
     "steps",
@@ -340,6 +341,7 @@ fn summary_cells(s: &saltus_solvers::Summary, precise: bool) -> Vec<String> {
             precise(s.shields),
             precise(s.bed_height),
             precise(s.transport_layer_thickness),
+            precise(s.flux_layer_thickness),
             s.steady.to_string(),
             format!("{:?}", s.sim_time_s),
             s.steps.to_string(),
@@ -358,6 +360,7 @@ fn summary_cells(s: &saltus_solvers::Summary, precise: bool) -> Vec<String> {
         rounded(s.shields, |v| format!("{v:.3}")),
         rounded(s.bed_height, |v| format!("{v:.4}")),
         rounded(s.transport_layer_thickness, |v| format!("{v:.4}")),
+        rounded(s.flux_layer_thickness, |v| format!("{v:.4}")),
         s.steady.to_string(),
         format!("{:.2}", s.sim_time_s),
         s.steps.to_string(),

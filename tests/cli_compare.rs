@@ -72,6 +72,7 @@ fn compare_runs_both_models_of_case01() {
         "shields",
         "bed_height",
         "transport_layer_thickness",
+        "flux_layer_thickness",
         "steady",
         "sim_time_s",
         "steps",

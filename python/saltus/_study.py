@@ -62,6 +62,7 @@ UNITS: Dict[str, str] = {
     "bed_surface": "m",
     "bed_height": "m",
     "transport_layer_thickness": "m",
+    "flux_layer_thickness": "m",
     "net_transport": "m2",
     "net_transport_stderr": "m2",
     "sim_time_s": "s",

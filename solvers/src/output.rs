@@ -85,6 +85,11 @@ pub struct Summary {
     /// without transport
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub transport_layer_thickness: Option<f64>,
+    /// total height of the cells whose local flux phi u_p exceeds 0.05 sqrt((s - 1) g d)
+    /// (m): the transport layer of Cheng et al. section 4.2 (their delta_t, delta_b);
+    /// absent without a density contrast or where no cell exceeds it
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flux_layer_thickness: Option<f64>,
     /// steady-state criterion met
     pub steady: bool,
     /// steady, end_time, max_steps, interrupted or unstable
@@ -307,6 +312,11 @@ impl TransportScales {
         Self { qs: (sm1.abs() * g * d * d * d).sqrt(), stress, shields_nominal }
     }
 
+    /// sqrt(|s - 1| g d) (m/s), the velocity scale of a local flux phi u_p: qs over d.
+    pub fn flux_velocity(&self, d: f64) -> f64 {
+        self.qs / d
+    }
+
     /// qs* of a transport rate qs (m^2/s); NaN without a scale.
     pub fn qs_star(&self, qs: f64) -> f64 {
         if self.qs > 0.0 {
@@ -335,6 +345,28 @@ pub fn finite(x: f64) -> Option<f64> {
 /// interpolated linearly inside cells.
 pub fn flux_levels(faces: &[f64], q: &[f64], lo: f64, hi: f64) -> (f64, f64) {
     flux_levels_by(q.len().min(faces.len().saturating_sub(1)), |i| faces[i], |i| q[i], lo, hi)
+}
+
+/// Threshold of the local flux phi u_p over sqrt((s - 1) g d) above which a cell is in
+/// the transport layer of Cheng et al. (section 4.2).
+pub const FLUX_LAYER_THRESHOLD: f64 = 0.05;
+
+/// Total height (m) of the cells between `faces` whose flux density `q` (m/s) exceeds
+/// [`FLUX_LAYER_THRESHOLD`] times `scale` = sqrt((s - 1) g d) (m/s); NaN without a scale
+/// or where no cell exceeds it. Summed cell by cell rather than taken between the lowest
+/// and highest such cell, so that one noisy cell of a DEM profile above the layer does not
+/// count the clear water below it.
+pub fn flux_layer_thickness(faces: &[f64], q: &[f64], scale: f64) -> f64 {
+    if !(scale > 0.0 && scale.is_finite()) {
+        return f64::NAN;
+    }
+    let limit = FLUX_LAYER_THRESHOLD * scale;
+    let h: f64 = q.iter().zip(faces.windows(2)).filter(|(q, _)| **q > limit).map(|(_, f)| f[1] - f[0]).sum();
+    if h > 0.0 {
+        h
+    } else {
+        f64::NAN
+    }
 }
 
 /// [`flux_levels`] over `n` cells with face `i` at `face(i)` and the flux density of cell
@@ -389,6 +421,21 @@ mod tests {
         let q = [0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0];
         let (a, b) = flux_levels(&faces, &q, 0.01, 0.99);
         assert!((a - 2.04).abs() < 1e-12 && (b - 5.96).abs() < 1e-12, "{a} {b}");
+    }
+
+    /// Cheng's transport layer of a flux profile q = phi u_p: the cells above 0.05
+    /// sqrt((s - 1) g d), on a stretched grid, whatever the flux does in the others.
+    #[test]
+    fn the_flux_layer_counts_the_cells_above_the_threshold() {
+        let faces = [0.0, 1.0, 1.5, 2.5, 4.0, 4.5, 6.0];
+        let scale = 2.0; // the threshold is then 0.1
+        let q = [0.01, 0.2, 0.5, 0.099, 0.3, 0.05];
+        let h = flux_layer_thickness(&faces, &q, scale);
+        assert!((h - (0.5 + 1.0 + 0.5)).abs() < 1e-12, "{h}");
+        assert!(flux_layer_thickness(&faces, &[0.0; 6], scale).is_nan());
+        for bad in [0.0, f64::NAN, f64::INFINITY, -1.0] {
+            assert!(flux_layer_thickness(&faces, &q, bad).is_nan());
+        }
     }
 
     #[test]

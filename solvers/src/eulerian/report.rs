@@ -187,6 +187,11 @@ impl Eulerian<'_> {
             shields_nominal: scales.shields_nominal,
             bed_height: output::finite(z1),
             transport_layer_thickness: output::finite(z99 - z1),
+            flux_layer_thickness: output::finite(output::flux_layer_thickness(
+                self.faces(),
+                &q,
+                scales.flux_velocity(scene.particles.diameter),
+            )),
             steady: matches!(ending, Ending::Steady),
             ending: ending.name().into(),
             sim_time_s: self.time(),

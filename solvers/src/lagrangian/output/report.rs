@@ -43,7 +43,8 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
         let tau_max = av.tau_face.iter().fold(0.0f64, |a, t| a.max(t.abs()));
         let tau_t_max = av.tau_t.iter().fold(0.0f64, |a, t| a.max(*t));
         let (z1, z99) = output::flux_levels(&faces, &av.q_s, 0.01, 0.99);
-        transport = Some((qs, tau_max, tau_t_max, z1, z99));
+        let layer = output::flux_layer_thickness(&faces, &av.q_s, scales.flux_velocity(mat.d));
+        transport = Some((qs, tau_max, tau_t_max, z1, z99, layer));
         if m.has_fluctuation() {
             let d = &m.config().domain;
             let dzs = vec![dz; n];
@@ -91,6 +92,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
         shields_nominal: scales.shields_nominal,
         bed_height: transport.and_then(|t| finite(t.3)),
         transport_layer_thickness: transport.and_then(|t| finite(t.4 - t.3)),
+        flux_layer_thickness: transport.and_then(|t| finite(t.5)),
         steady: matches!(ending, Ending::Steady),
         ending: ending.name().into(),
         sim_time_s: m.time(),
