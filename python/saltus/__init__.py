@@ -288,8 +288,8 @@ def diagnose(
         a dict: ``text`` (the table the command prints), ``out``, ``files``,
         ``warnings``, ``fitted`` (the path of ``fitted.toml``, None when no fit was
         supported or ``fit`` is False) and ``fits`` (None without ``fit``): ``phi_min``,
-        ``z_min``, ``z_max``, ``viscosity`` (why the fluid-phase viscosity exponent is not
-        fitted), and ``closures``, one per closure: ``closure``, ``model``, ``table`` (the
+        ``z_min``, ``z_max``, ``viscosity`` (the fluid-phase viscosity exponent of Fry et al.
+        eqs 50-51 with its errors, or why the run does not measure it), and ``closures``, one per closure: ``closure``, ``model``, ``table`` (the
         fitted closure table), ``unsupported`` and ``quantities``, each with ``quantity``,
         ``held``, ``kept`` and ``attempts``: the fits tried, full first, each either
         ``values``, ``stderr``, ``stderr_independent``, ``cells``, ``residual_rms`` or the

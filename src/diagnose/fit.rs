@@ -296,27 +296,17 @@ fn resolved_change(s: &Solution, lo: f64, hi: f64, at: impl Fn(&[f64], f64) -> O
     }
 }
 
-/// Why the fluid-phase viscosity exponent (Fry et al. 2024 eqs 51-52) is not fitted on a
-/// run: neither solver measures it.
-pub fn viscosity_unsupported(dem: bool, fluid: bool) -> String {
-    if !fluid {
-        "the run has no fluid".into()
-    } else if dem {
-        "not fitted here: the DEM's fluid-phase stress is the column's tau_f (the scene's viscosity closure) plus \
-         the stress the drag exchange carries across the grains, which the profiles do not hold; with a clear-fluid \
-         column and drag_velocity = \"sphere_average\" it can be estimated from beta, u_f and phi (docs/validation.md, \
-         Fry et al. 2024)"
-            .into()
-    } else {
-        "the Eulerian run's fluid stress is the scene's viscosity closure itself".into()
-    }
-}
-
 /// The `fitted.toml` text of `fit`: comments, `[closures.granular]`, and a `[fit]` table
 /// of metadata (the run, the window, each quantity's fitted and held parameters, values,
 /// standard errors, residual RMS, and the fits the cells could not support with their
 /// reasons). None when no quantity was fitted.
-pub fn fitted_toml(fit: &ClosureFit, runs: &[&Path], phi_min: f64, window: Window, viscosity: &str) -> Option<String> {
+pub fn fitted_toml(
+    fit: &ClosureFit,
+    runs: &[&Path],
+    phi_min: f64,
+    window: Window,
+    viscosity: &Result<super::viscosity::ViscosityFit, String>,
+) -> Option<String> {
     let table = fit.table.clone()?;
     let mut meta = toml::Table::new();
     meta.insert("runs".into(), toml::Value::Array(runs.iter().map(|r| r.display().to_string().into()).collect()));
@@ -364,13 +354,37 @@ pub fn fitted_toml(fit: &ClosureFit, runs: &[&Path], phi_min: f64, window: Windo
         r.insert("reason".into(), reason.clone().into());
         rejected.push(toml::Value::Table(r));
     }
-    let mut r = toml::Table::new();
-    r.insert("quantity".into(), "viscosity exponent (Fry et al. 2024 eqs 51-52)".into());
-    r.insert("reason".into(), viscosity.into());
-    rejected.push(toml::Value::Table(r));
+    let mut closures = toml::Table::new();
+    match viscosity {
+        Ok(v) => {
+            let s = &v.solution;
+            let mut t = toml::Table::new();
+            t.insert("quantity".into(), super::viscosity::QUANTITY.into());
+            t.insert("control".into(), "phi".into());
+            t.insert("cells".into(), (s.cells as i64).into());
+            t.insert("x_min".into(), super::viscosity::PHI_RANGE.0.into());
+            t.insert("x_max".into(), super::viscosity::PHI_RANGE.1.into());
+            t.insert("z_min".into(), v.z_range.0.into());
+            t.insert("z_max".into(), v.z_range.1.into());
+            t.insert("params".into(), strings(&["beta0".to_string()]));
+            t.insert("values".into(), numbers(&s.params));
+            t.insert("stderr".into(), numbers(&s.stderr));
+            t.insert("stderr_independent".into(), numbers(&s.stderr_independent));
+            t.insert("residual_rms".into(), s.rms.into());
+            t.insert("residual_lag1".into(), s.r1.into());
+            t.insert("held".into(), strings(&["a = 0".to_string()]));
+            quantities.push(toml::Value::Table(t));
+            closures.insert("viscosity".into(), toml::Value::Table(super::viscosity::closure_table(v)));
+        }
+        Err(reason) => {
+            let mut r = toml::Table::new();
+            r.insert("quantity".into(), super::viscosity::QUANTITY.into());
+            r.insert("reason".into(), reason.clone().into());
+            rejected.push(toml::Value::Table(r));
+        }
+    }
     meta.insert("quantity".into(), toml::Value::Array(quantities));
     meta.insert("rejected".into(), toml::Value::Array(rejected));
-    let mut closures = toml::Table::new();
     closures.insert("granular".into(), toml::Value::Table(table));
     let mut doc = toml::Table::new();
     doc.insert("closures".into(), toml::Value::Table(closures));
@@ -378,7 +392,8 @@ pub fn fitted_toml(fit: &ClosureFit, runs: &[&Path], phi_min: f64, window: Windo
     let body = toml::to_string(&doc).ok()?;
     Some(format!(
         "# Closure tables fitted by `saltus diagnose --fit` on the averaged fields of {}.\n\
-         # Load with `saltus run SCENE --closures THIS_FILE`: [closures.granular] replaces the scene's;\n\
+         # Load with `saltus run SCENE --closures THIS_FILE`: [closures.granular] (and [closures.viscosity]\n\
+         # when the run measures it) replace the scene's;\n\
          # [fit] is metadata (window, fitted and held parameters, standard errors, residuals, the\n\
          # fits the cells could not support), ignored by the loader. `stderr` counts the lag-1\n\
          # correlation of the residuals between neighbouring cells; `stderr_independent` takes the\n\

@@ -12,6 +12,7 @@ pub mod fit;
 pub mod kinetic;
 pub mod least_squares;
 pub mod local;
+pub mod viscosity;
 
 use std::path::{Path, PathBuf};
 
@@ -90,8 +91,8 @@ pub struct Diagnosis {
     pub closures: Vec<ClosureDiagnosis>,
     /// the window of the fits
     pub window: Window,
-    /// why the fluid-phase viscosity exponent is not fitted on this run
-    pub viscosity_fit: String,
+    /// the fluid-phase viscosity exponent of the run, or why the run does not measure it
+    pub viscosity_fit: Result<viscosity::ViscosityFit, String>,
     /// the run's grains (what the closures inherit)
     pub particles: saltus_core::scene::Particles,
 }
@@ -172,9 +173,6 @@ pub fn diagnose_fields(fields: &mut RunFields, closure_args: &[String], opts: Op
         out.push(ClosureDiagnosis { label: n.label, model, comparisons, g0_fit, fit: None, table });
     }
     let dir = fields.profiles_path.parent().map_or_else(PathBuf::new, Path::to_path_buf);
-    let sc = &fields.scene;
-    let dem = sc.solver.kind == saltus_core::scene::SolverKind::Lagrangian;
-    let fluid = !dem || sc.solver.lagrangian.fluid != saltus_core::scene::FluidMode::Off;
     let mut d = Diagnosis {
         dir,
         pooled: Vec::new(),
@@ -182,8 +180,8 @@ pub fn diagnose_fields(fields: &mut RunFields, closure_args: &[String], opts: Op
         phi_min: opts.phi_min,
         closures: out,
         window: opts.window,
-        viscosity_fit: fit::viscosity_unsupported(dem, fluid),
-        particles: sc.particles.clone(),
+        viscosity_fit: viscosity::fit(fields),
+        particles: fields.scene.particles.clone(),
     };
     if opts.fit {
         d.fit()?;
@@ -415,7 +413,13 @@ impl Diagnosis {
             .collect();
         json!({
             "phi_min": self.phi_min, "z_min": self.window.z_min, "z_max": self.window.z_max,
-            "closures": closures, "viscosity": self.viscosity_fit,
+            "closures": closures, "viscosity": match &self.viscosity_fit {
+                Ok(v) => json!({
+                    "beta0": v.solution.params[0], "stderr": v.solution.stderr[0],
+                    "stderr_independent": v.solution.stderr_independent[0], "cells": v.solution.cells,
+                }),
+                Err(reason) => json!({ "unsupported": reason }),
+            },
         })
     }
 
@@ -477,7 +481,23 @@ impl Diagnosis {
                 s.push_str(&format!("{:<24} {what}: not fitted: {reason}\n", f.label));
             }
         }
-        s.push_str(&format!("viscosity exponent (Fry et al. 2024 eqs 51-52): not fitted: {}\n", self.viscosity_fit));
+        match &self.viscosity_fit {
+            Ok(v) => {
+                let sol = &v.solution;
+                s.push_str(&format!(
+                    "{}: beta0 = {} +- {} [{}] over {} cells with {} < phi <= {}, residual RMS {} (fry2024 with a = 0)\n",
+                    viscosity::QUANTITY,
+                    figure(sol.params[0]),
+                    figure(sol.stderr[0]),
+                    figure(sol.stderr_independent[0]),
+                    sol.cells,
+                    viscosity::PHI_RANGE.0,
+                    viscosity::PHI_RANGE.1,
+                    figure(sol.rms)
+                ));
+            }
+            Err(reason) => s.push_str(&format!("{}: not fitted: {reason}\n", viscosity::QUANTITY)),
+        }
         s
     }
 }
