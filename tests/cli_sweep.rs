@@ -311,13 +311,14 @@ fn the_shipped_dem_sweeps_resolve_to_the_hand_written_points() {
     assert!(o.status.success(), "{}", stderr(&o));
     let s: toml::Table = std::fs::read_to_string(t4.join("point_0000.toml")).unwrap().parse().unwrap();
     assert_eq!(s["physics"]["pressure_gradient"].as_float(), Some(11.7007));
-    assert_eq!(s["solver"]["lagrangian"]["stats_start"].as_float(), Some(55.0));
+    assert_eq!(s["solver"]["lagrangian"]["stats_start"].as_float(), Some(100.0));
     assert_eq!(
         std::fs::read_dir(&t4)
             .unwrap()
             .filter(|e| e.as_ref().unwrap().path().extension().is_some_and(|x| x == "toml"))
             .count(),
-        6
+        14,
+        "table 4's seven Shields numbers with and without the EIM"
     );
 }
 
