@@ -66,7 +66,7 @@ fn state(scene: &Scene, from: &Path) -> anyhow::Result<Result<WarmStart, String>
         SolverKind::Eulerian => Ok(Ok(WarmStart::Profiles(profiles(from)?))),
         SolverKind::Lagrangian => {
             Ok(saltus_solvers::run::checkpoint::read(from).map_err(|e| e.to_string()).and_then(|r| {
-                let w = WarmStart::State(r);
+                let w = WarmStart::State(Box::new(r));
                 saltus_solvers::warm_start_refusal(scene, &w).map_or(Ok(w), Err)
             }))
         }

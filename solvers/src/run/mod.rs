@@ -350,7 +350,7 @@ pub enum WarmStart {
     /// its final profiles (`profiles.csv`): the Eulerian column's
     Profiles(Profiles),
     /// its final checkpoint: the DEM's grains
-    State(checkpoint::Restart),
+    State(Box<checkpoint::Restart>),
 }
 
 /// Something that watches a run: told when it starts, after every unit of work (where it
