@@ -119,7 +119,8 @@ pub fn run(scene: &Scene, out: &Path, observer: &mut dyn Observer) -> Result<Run
 /// before the set-up and any deposition, with `timeseries.csv` in it; the time series,
 /// snapshots and checkpoints are written while the run goes ([`run::history`]). A
 /// checkpoint that is missing, damaged, of another solver or of a scene that differs in
-/// a key that matters is refused before anything is made, naming the file and the keys.
+/// a key that matters is refused before anything is made, naming the file and the keys;
+/// so is a warm start the scene cannot take ([`warm_start_refusal`]).
 pub fn run_with(
     scene: &Scene,
     out: &Path,
