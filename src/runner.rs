@@ -41,8 +41,9 @@ pub struct RunSettings {
     pub log_every: Option<Duration>,
     /// stop the run after this many wall-clock seconds (`--max-wall`)
     pub max_wall: Option<f64>,
-    /// start from these profiles (a sweep's warm start) instead of the initial state
-    pub warm_start: Option<saltus_solvers::Profiles>,
+    /// start from another run's final state (a sweep's warm start) instead of the
+    /// initial state
+    pub warm_start: Option<saltus_solvers::WarmStart>,
 }
 
 impl Default for RunSettings {

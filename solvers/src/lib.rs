@@ -27,7 +27,7 @@ use saltus_core::scene::{Scene, SolverKind};
 use saltus_core::Error;
 
 pub use output::{Profiles, Summary};
-pub use run::{Ending, Observer, Progress, Stepper};
+pub use run::{Ending, Observer, Progress, Stepper, WarmStart};
 pub use validate::validate;
 
 /// Result of a run: what was written, and a paragraph for the terminal.
@@ -82,9 +82,27 @@ pub struct RunOptions {
     /// stop after this many wall-clock seconds ([`Ending::WallClock`]; the outputs and a
     /// checkpoint are written as at any other end)
     pub max_wall: Option<f64>,
-    /// start from these profiles (another run's final state, [`Stepper::warm_start`])
-    /// instead of the scene's initial state; not with `restart`
-    pub warm_start: Option<Profiles>,
+    /// start from another run's final state ([`Stepper::warm_start`]; see
+    /// [`warm_start_refusal`]) instead of the scene's initial state; not with `restart`
+    pub warm_start: Option<WarmStart>,
+}
+
+/// Why `scene` cannot start warm from `from`, if it cannot, told before anything is set
+/// up (so that a caller may start it from rest instead): a DEM scene takes the grains of a
+/// DEM checkpoint whose scene makes the same grains
+/// ([`lagrangian::run::warm::refusal`]); an Eulerian scene takes profiles, which its
+/// solver checks as it takes them.
+pub fn warm_start_refusal(scene: &Scene, from: &WarmStart) -> Option<String> {
+    match (scene.solver.kind, from) {
+        (SolverKind::Lagrangian, WarmStart::State(r)) => lagrangian::run::warm::refusal(scene, r),
+        (SolverKind::Eulerian, WarmStart::Profiles(_)) => None,
+        (SolverKind::Lagrangian, WarmStart::Profiles(_)) => {
+            Some("the DEM starts from another run's grains (its checkpoint), not from profiles".into())
+        }
+        (SolverKind::Eulerian, WarmStart::State(r)) => {
+            Some(format!("{}: the Eulerian column starts from profiles, not from a checkpoint", r.file.display()))
+        }
+    }
 }
 
 /// Run `scene`, writing its outputs into `out`. `observer` sees every unit of work and
@@ -101,7 +119,8 @@ pub fn run(scene: &Scene, out: &Path, observer: &mut dyn Observer) -> Result<Run
 /// before the set-up and any deposition, with `timeseries.csv` in it; the time series,
 /// snapshots and checkpoints are written while the run goes ([`run::history`]). A
 /// checkpoint that is missing, damaged, of another solver or of a scene that differs in
-/// a key that matters is refused before anything is made, naming the file and the keys.
+/// a key that matters is refused before anything is made, naming the file and the keys;
+/// so is a warm start the scene cannot take ([`warm_start_refusal`]).
 pub fn run_with(
     scene: &Scene,
     out: &Path,
@@ -112,6 +131,18 @@ pub fn run_with(
     let restart = options.restart.as_deref().map(run::checkpoint::read).transpose()?;
     if let Some(r) = &restart {
         check_restart(scene, r)?;
+    }
+    let warm_refused = |m: String| Error::Invalid(format!("{}: warm start: {m}", scene.path.display()));
+    if let Some(w) = &options.warm_start {
+        if restart.is_some() {
+            return Err(Error::Invalid(format!(
+                "{}: a run restarts from a checkpoint or starts warm, not both",
+                scene.path.display()
+            )));
+        }
+        if let Some(m) = warm_start_refusal(scene, w) {
+            return Err(warm_refused(m));
+        }
     }
     let created = !out.exists();
     // a folder that cannot be made fails before the work, not after it
@@ -138,14 +169,8 @@ pub fn run_with(
         }
         stepper.restore(&r.state).map_err(fail)?;
     }
-    if let Some(p) = &options.warm_start {
-        if restart.is_some() {
-            return Err(Error::Invalid(format!(
-                "{}: a run restarts from a checkpoint or starts warm, not both",
-                scene.path.display()
-            )));
-        }
-        stepper.warm_start(p).map_err(|m| Error::Invalid(format!("{}: warm start: {m}", scene.path.display())))?;
+    if let Some(w) = &options.warm_start {
+        stepper.warm_start(w).map_err(warm_refused)?;
     }
     let mut recorder = run::Recorder::start(out, scene, stepper.as_ref(), restart.as_ref())?;
     let resumed = recorder.resumed_clock();
@@ -201,16 +226,7 @@ fn check_restart(scene: &Scene, r: &run::checkpoint::Restart) -> Result<(), Erro
         )));
     }
     let now = scene.to_toml()?;
-    // the checkpoint's scene resolved again, so that a key added since it was written
-    // (absent there) takes its default, which is the behaviour the checkpoint ran with;
-    // a scene this version cannot read is compared as written
-    let saved = r
-        .scene
-        .parse::<toml::Table>()
-        .ok()
-        .and_then(|t| Scene::from_table(t, &scene.path).ok())
-        .and_then(|s| s.to_toml().ok())
-        .unwrap_or_else(|| r.scene.clone());
+    let saved = r.resolved_scene(&scene.path);
     let keys =
         run::checkpoint::scene_differences(&saved, &now, solver).map_err(|e| Error::Invalid(format!("{file}: {e}")))?;
     if keys.is_empty() {

@@ -65,6 +65,10 @@ pub struct PointEntry {
     /// folder of the point whose state this one started from (a warm start)
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub warm_start_from: Option<String>,
+    /// why the point started from rest although its parent ended done (a warm start its
+    /// scene cannot take)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub warm_start_refused: Option<String>,
     /// why it failed or stopped early
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,

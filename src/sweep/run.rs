@@ -86,7 +86,10 @@ fn starting_manifest(sweep: &Sweep, out: &Path, fresh: Manifest, resume: bool) -
         if old.status.finished() && out.join(&old.dir).join("summary.json").is_file() {
             *new = old;
         } else if old.status == Status::Interrupted {
+            // it continues from its checkpoint, from the start it was given
             new.status = Status::Interrupted;
+            new.warm_start_from = old.warm_start_from;
+            new.warm_start_refused = old.warm_start_refused;
         }
     }
     Ok(m)
@@ -201,6 +204,8 @@ fn worker(ctx: &Work, shared: &Mutex<Shared>) {
         };
         let p = &sweep.points[i];
         let dir = out.join(p.dir_name());
+        // a continued point keeps the start it was given when it began
+        let continued = restart.is_some();
         bar.set_message(format!("running {} ({})", p.dir_name(), sweep.describe(p)));
         let job = || {
             let cpu0 = saltus_solvers::run::cpu::thread_seconds();
@@ -217,19 +222,28 @@ fn worker(ctx: &Work, shared: &Mutex<Shared>) {
         let entry = &mut s.manifest.points[i];
         entry.cpu_time_s = cpu;
         entry.wall_time_s = Some(wall);
-        entry.warm_start_from = warm_from.clone();
+        if !continued {
+            entry.warm_start_from = warm_from.clone();
+            entry.warm_start_refused = None;
+        }
         let line;
         match result {
-            Ok((status, ending, error, warnings)) => {
+            Ok((status, ending, error, warnings, refused)) => {
+                if refused.is_some() {
+                    // started from rest: it did not start from the parent
+                    entry.warm_start_from = None;
+                    entry.warm_start_refused.clone_from(&refused);
+                }
                 entry.status = status;
                 entry.ending = ending;
                 entry.error = error;
                 line = format!(
-                    "{} ({}): {}{}",
+                    "{} ({}): {}{}{}",
                     entry.dir,
                     sweep.describe(p),
                     entry.ending.as_deref().unwrap_or("-"),
-                    entry.error.as_ref().map_or_else(String::new, |e| format!(": {e}"))
+                    entry.error.as_ref().map_or_else(String::new, |e| format!(": {e}")),
+                    refused.map_or_else(String::new, |why| format!(" (from rest, warm start refused: {why})"))
                 );
                 for w in warnings {
                     if !s.warnings.contains(&w) {
@@ -257,7 +271,9 @@ fn worker(ctx: &Work, shared: &Mutex<Shared>) {
     }
 }
 
-type PointResult = (Status, Option<String>, Option<String>, Vec<String>);
+/// Status, ending, error and warnings of a point's run, and why it started from rest when
+/// its warm start was refused.
+type PointResult = (Status, Option<String>, Option<String>, Vec<String>, Option<String>);
 
 fn run_point(
     sweep: &Sweep,
@@ -271,9 +287,9 @@ fn run_point(
     let settings = runner::RunSettings { restart, log_every: None, max_wall: None, warm_start: None };
     let bar = ProgressBar::hidden();
     let mut stop = |_: &saltus_solvers::Progress| runner::interrupted();
-    let outcome = match &warm_from {
+    let (outcome, refused) = match &warm_from {
         Some(from) => warm::run_from(&scene, dir, from, &mut stop)?,
-        None => runner::run_scene_with(&scene, dir, &bar, &settings, &mut stop)?,
+        None => (runner::run_scene_with(&scene, dir, &bar, &settings, &mut stop)?, None),
     };
     let status = match (&outcome.ending, &outcome.error) {
         (Some(saltus_solvers::Ending::Unstable(_)), _) => Status::Unstable,
@@ -283,7 +299,7 @@ fn run_point(
     };
     let ending = outcome.ending.as_ref().map(|e| e.name().to_string());
     let _ = table::read_summary(dir)?;
-    Ok((status, ending, outcome.error, outcome.warnings))
+    Ok((status, ending, outcome.error, outcome.warnings, refused))
 }
 
 impl Report {

@@ -102,7 +102,7 @@ pub fn rows(manifest: &Manifest, summaries: &[Option<Fields>]) -> (Vec<String>, 
     let cols = columns(summaries);
     let mut header = vec!["point".to_string(), "dir".into()];
     header.extend(manifest.axes.iter().map(|a| a.name.clone()));
-    header.extend(["status".to_string(), "cpu_time_s".into(), "warm_start_from".into()]);
+    header.extend(["status".to_string(), "cpu_time_s".into(), "warm_start_from".into(), "warm_start_refused".into()]);
     header.extend(cols.iter().map(|c| if c == "error" { "run_error".into() } else { c.clone() }));
     let rows = manifest
         .points
@@ -117,6 +117,7 @@ pub fn rows(manifest: &Manifest, summaries: &[Option<Fields>]) -> (Vec<String>, 
             row.push(serde_json::to_value(p.status).ok().as_ref().map(cell).unwrap_or_default());
             row.push(p.cpu_time_s.map_or_else(String::new, |c| format!("{c:?}")));
             row.push(p.warm_start_from.clone().unwrap_or_default());
+            row.push(p.warm_start_refused.clone().unwrap_or_default());
             for c in &cols {
                 let v = s.as_ref().and_then(|s| s.0.iter().find(|(k, _)| k == c)).map(|(_, v)| cell(v));
                 row.push(v.unwrap_or_default());

@@ -1,15 +1,21 @@
-//! Warm starts (`warm_start = true` in the sweep file): an Eulerian point starts from the
-//! final profiles of its neighbour one step back along the last swept axis (its parent)
-//! instead of from rest, once that neighbour has finished. Each chain of points along
-//! that axis runs in order, the chains in parallel, so that which state a point starts
-//! from does not depend on the scheduling: the sweep gives the same numbers on any number
-//! of jobs. The first point of a chain, a point whose parent did not end done, and a
-//! scene with a two-equation turbulence closure (k and omega are not in the profiles)
-//! start from rest.
+//! Warm starts (`warm_start = true` in the sweep file): a point starts from the final
+//! state of its neighbour one step back along the last swept axis (its parent) instead of
+//! from rest, once that neighbour has ended done: an Eulerian point from its profiles, a
+//! DEM point from the grains of its final checkpoint (every DEM run writes one at its
+//! end), with its own fluid column and forcing and without a deposition. Each chain of
+//! points along that axis runs in order, the chains in parallel, so that which state a
+//! point starts from does not depend on the scheduling: the sweep gives the same numbers
+//! on any number of jobs. The first point of a chain, a point whose parent did not end
+//! done, and a scene with a two-equation turbulence closure in the Eulerian solver (k and
+//! omega are not in the profiles) start from rest; so does a DEM point whose parent's
+//! grains its scene cannot take (another count or size of grains, lateral cell, time step
+//! or bottom), with the reason in the manifest and the table.
 
 use std::path::Path;
 
 use anyhow::Context;
+use saltus_core::scene::{Scene, SolverKind};
+use saltus_solvers::WarmStart;
 
 use super::spec::Sweep;
 use crate::runner;
@@ -52,20 +58,42 @@ pub fn profiles(dir: &Path) -> anyhow::Result<saltus_solvers::Profiles> {
     Ok(saltus_solvers::Profiles { columns: t.names.into_iter().zip(t.columns).collect() })
 }
 
-/// Run `scene` into `dir` from the final state of the run in `from`.
+/// The final state of the run in `from` that `scene` starts from: its profiles for the
+/// Eulerian column (a run without them is an error), its checkpoint for the DEM; `Err`
+/// with the reason when the DEM scene cannot take the checkpoint's grains.
+fn state(scene: &Scene, from: &Path) -> anyhow::Result<Result<WarmStart, String>> {
+    match scene.solver.kind {
+        SolverKind::Eulerian => Ok(Ok(WarmStart::Profiles(profiles(from)?))),
+        SolverKind::Lagrangian => {
+            Ok(saltus_solvers::run::checkpoint::read(from).map_err(|e| e.to_string()).and_then(|r| {
+                let w = WarmStart::State(Box::new(r));
+                saltus_solvers::warm_start_refusal(scene, &w).map_or(Ok(w), Err)
+            }))
+        }
+    }
+}
+
+/// Run `scene` into `dir` from the final state of the run in `from`, or from rest when
+/// the state cannot start it: then with the reason.
 pub fn run_from(
-    scene: &saltus_core::scene::Scene,
+    scene: &Scene,
     dir: &Path,
     from: &Path,
     stop: &mut dyn FnMut(&saltus_solvers::Progress) -> bool,
-) -> anyhow::Result<runner::RunOutcome> {
-    let settings =
-        runner::RunSettings { restart: None, log_every: None, max_wall: None, warm_start: Some(profiles(from)?) };
-    Ok(runner::run_scene_with(scene, dir, &indicatif::ProgressBar::hidden(), &settings, stop)?)
+) -> anyhow::Result<(runner::RunOutcome, Option<String>)> {
+    let (warm_start, refused) = match state(scene, from)? {
+        Ok(w) => (Some(w), None),
+        Err(why) => (None, Some(why)),
+    };
+    let settings = runner::RunSettings { restart: None, log_every: None, max_wall: None, warm_start };
+    Ok((runner::run_scene_with(scene, dir, &indicatif::ProgressBar::hidden(), &settings, stop)?, refused))
 }
 
-/// Whether `scene` can start warm: an Eulerian column without transported turbulence.
-pub fn can_start_warm(scene: &saltus_core::scene::Scene) -> bool {
-    scene.solver.kind == saltus_core::scene::SolverKind::Eulerian
-        && scene.closures.turbulence.as_ref().is_none_or(|t| t.transported().is_empty())
+/// Whether `scene` can start warm: an Eulerian column without transported turbulence, or
+/// a DEM run (whose parent's grains are checked when it starts).
+pub fn can_start_warm(scene: &Scene) -> bool {
+    match scene.solver.kind {
+        SolverKind::Eulerian => scene.closures.turbulence.as_ref().is_none_or(|t| t.transported().is_empty()),
+        SolverKind::Lagrangian => true,
+    }
 }

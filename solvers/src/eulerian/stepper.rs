@@ -93,8 +93,13 @@ impl Stepper for Eulerian<'_> {
         Limits { end_time: s.end_time, end_tolerance: 1e-12, max_steps: s.max_steps as u64, wall: None }
     }
 
-    fn warm_start(&mut self, profiles: &crate::output::Profiles) -> Result<(), String> {
-        self.warm_start_from(profiles)
+    fn warm_start(&mut self, from: &crate::run::WarmStart) -> Result<(), String> {
+        match from {
+            crate::run::WarmStart::Profiles(p) => self.warm_start_from(p),
+            crate::run::WarmStart::State(r) => {
+                Err(format!("{}: the Eulerian column starts from profiles, not from a checkpoint", r.file.display()))
+            }
+        }
     }
 
     fn step(&mut self, limits: &Limits) -> Option<Ending> {

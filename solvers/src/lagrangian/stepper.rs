@@ -148,4 +148,16 @@ impl Stepper for Lagrangian<'_> {
     fn restartable(&self) -> bool {
         true
     }
+
+    fn warm_start(&mut self, from: &crate::run::WarmStart) -> Result<(), String> {
+        match from {
+            crate::run::WarmStart::State(r) => {
+                let parent = checkpoint::decode(&r.state).map_err(|e| format!("{}: {e}", r.file.display()))?;
+                self.warm_start_from(parent).map_err(|e| format!("{}: {e}", r.file.display()))
+            }
+            crate::run::WarmStart::Profiles(_) => {
+                Err("the DEM starts from another run's grains (its checkpoint), not from profiles".into())
+            }
+        }
+    }
 }

@@ -73,6 +73,21 @@ pub struct Restart {
     pub state: Vec<u8>,
 }
 
+impl Restart {
+    /// The checkpoint's scene resolved again by this program (relative paths against
+    /// `path`), so that a key added since it was written (absent there) takes its
+    /// default, which is the behaviour the checkpoint ran with; a scene this version
+    /// cannot read is given as written.
+    pub fn resolved_scene(&self, path: &Path) -> String {
+        self.scene
+            .parse::<toml::Table>()
+            .ok()
+            .and_then(|t| saltus_core::scene::Scene::from_table(t, path).ok())
+            .and_then(|s| s.to_toml().ok())
+            .unwrap_or_else(|| self.scene.clone())
+    }
+}
+
 fn program() -> String {
     format!("saltus {} ({})", env!("CARGO_PKG_VERSION"), crate::output::GIT_REVISION)
 }
@@ -201,12 +216,25 @@ pub fn scene_differences(saved: &str, now: &str, solver: &str) -> Result<Vec<Str
     let parse = |t: &str, what: &str| t.parse::<toml::Table>().map_err(|e| format!("{what} scene: {e}"));
     let (a, b) = (parse(saved, "the checkpoint's")?, parse(now, "this")?);
     let mut out = Vec::new();
-    diff("", &toml::Value::Table(a), &toml::Value::Table(b), solver, &mut out);
+    diff("", &toml::Value::Table(a), &toml::Value::Table(b), &|k| may_differ(k, solver), &mut out);
     Ok(out)
 }
 
-fn diff(key: &str, a: &toml::Value, b: &toml::Value, solver: &str, out: &mut Vec<String>) {
-    if !key.is_empty() && may_differ(key, solver) {
+/// Keys in which the resolved scenes `saved` (the checkpoint's) and `now` differ among
+/// `keys` and the keys under them, with both values (`-` where absent).
+pub fn scene_differences_in(saved: &str, now: &str, keys: &[&str]) -> Result<Vec<String>, String> {
+    let parse = |t: &str, what: &str| t.parse::<toml::Table>().map_err(|e| format!("{what} scene: {e}"));
+    let (a, b) = (parse(saved, "the checkpoint's")?, parse(now, "this")?);
+    let under = |key: &str, k: &str| key == k || key.strip_prefix(k).is_some_and(|rest| rest.starts_with('.'));
+    // a table above a listed key is entered, everything beside the listed keys skipped
+    let skip = |key: &str| !keys.iter().any(|k| under(key, k) || under(k, key));
+    let mut out = Vec::new();
+    diff("", &toml::Value::Table(a), &toml::Value::Table(b), &skip, &mut out);
+    Ok(out)
+}
+
+fn diff(key: &str, a: &toml::Value, b: &toml::Value, skip: &dyn Fn(&str) -> bool, out: &mut Vec<String>) {
+    if !key.is_empty() && skip(key) {
         return;
     }
     if let (toml::Value::Table(x), toml::Value::Table(y)) = (a, b) {
@@ -216,10 +244,8 @@ fn diff(key: &str, a: &toml::Value, b: &toml::Value, solver: &str, out: &mut Vec
         for k in keys {
             let sub = if key.is_empty() { k.clone() } else { format!("{key}.{k}") };
             match (x.get(k), y.get(k)) {
-                (Some(u), Some(v)) => diff(&sub, u, v, solver, out),
-                (u, v) if !may_differ(&sub, solver) => {
-                    out.push(format!("{sub} ({} in the checkpoint, {} now)", show(u), show(v)))
-                }
+                (Some(u), Some(v)) => diff(&sub, u, v, skip, out),
+                (u, v) if !skip(&sub) => out.push(format!("{sub} ({} in the checkpoint, {} now)", show(u), show(v))),
                 _ => {}
             }
         }
@@ -286,5 +312,21 @@ mod tests {
             ["seed (1 in the checkpoint, 2 now)", "solver.lagrangian.settle_time (0.1 in the checkpoint, 0.2 now)"]
         );
         assert!(scene_differences(a, a, "lagrangian").unwrap().is_empty());
+    }
+
+    #[test]
+    fn differences_in_listed_keys_skip_every_other_key() {
+        let a = "seed = 1\n[solver.lagrangian]\nlength = 0.03\nend_time = 1.0\n[particles]\nfriction = 0.4\n";
+        let b = "seed = 2\n[solver.lagrangian]\nlength = 0.04\nend_time = 5.0\n[particles]\nfriction = 0.5\n";
+        let d = scene_differences_in(a, b, &["particles", "solver.lagrangian.length"]).unwrap();
+        assert_eq!(
+            d,
+            [
+                "particles.friction (0.4 in the checkpoint, 0.5 now)",
+                "solver.lagrangian.length (0.03 in the checkpoint, 0.04 now)"
+            ]
+        );
+        let c = "seed = 2\n[solver.lagrangian]\nlength = 0.03\n[particles]\nfriction = 0.4\n";
+        assert!(scene_differences_in(a, c, &["particles", "solver.lagrangian.length"]).unwrap().is_empty());
     }
 }

@@ -336,12 +336,21 @@ pub trait Stepper {
         false
     }
 
-    /// Start from `profiles` (another run's final profiles, a neighbouring point of a
-    /// sweep) instead of the scene's initial state, before the first step; `Err` for a
-    /// solver that cannot.
-    fn warm_start(&mut self, _profiles: &Profiles) -> Result<(), String> {
-        Err(format!("the {} solver cannot start from another run's profiles", self.name()))
+    /// Start from `from` (another run's final state, a neighbouring point of a sweep)
+    /// instead of the scene's initial state, before the first step; `Err`, the stepper
+    /// left as it was set up, for a solver that cannot or a state it cannot take.
+    fn warm_start(&mut self, _from: &WarmStart) -> Result<(), String> {
+        Err(format!("the {} solver cannot start from another run's state", self.name()))
     }
+}
+
+/// What a warm start starts from: another run's final state.
+#[derive(Clone, Debug)]
+pub enum WarmStart {
+    /// its final profiles (`profiles.csv`): the Eulerian column's
+    Profiles(Profiles),
+    /// its final checkpoint: the DEM's grains
+    State(Box<checkpoint::Restart>),
 }
 
 /// Something that watches a run: told when it starts, after every unit of work (where it

@@ -124,6 +124,15 @@ impl Dem {
         self.cylinders.as_ref()
     }
 
+    /// Whether `other` has the same box, flat walls, kind of bottom and wall friction:
+    /// whether this engine's particles and contact histories mean the same in it.
+    pub fn same_bounds(&self, other: &Dem) -> bool {
+        self.bx == other.bx
+            && self.walls == other.walls
+            && self.cylinders.is_some() == other.cylinders.is_some()
+            && self.wall_friction == other.wall_friction
+    }
+
     /// Particles.
     pub fn particles(&self) -> &Particles {
         &self.p

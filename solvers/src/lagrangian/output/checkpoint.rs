@@ -19,15 +19,29 @@ pub(crate) fn save(state: &State, out: &mut Vec<u8>) -> Result<(), String> {
     options().serialize_into(out, state).map_err(|e| format!("cannot encode the DEM state: {e}"))
 }
 
-/// The state `save` wrote, after checking that its sizes fit together and that it was
-/// written with the time step `dt` and the same column (`coupled`) and granular fields
-/// (`granular`) as this scene's: a state that does not fit is refused, never indexed.
-pub(crate) fn load(bytes: &[u8], dt: f64, coupled: bool, granular: bool) -> Result<State, String> {
+/// The state `save` wrote, after checking that its sizes fit together: a state that does
+/// not is refused, never indexed.
+pub(crate) fn decode(bytes: &[u8]) -> Result<State, String> {
     let s: State = options()
         .with_limit(bytes.len() as u64)
         .deserialize(bytes)
         .map_err(|e| format!("cannot decode the DEM state: {e}"))?;
-    if !(s.fits() && s.column.is_some() == coupled && s.granular.is_some() == granular && s.dem.dt() == dt) {
+    if !s.fits() {
+        return Err(format!(
+            "the DEM state's arrays do not fit together ({} particles, {} fluid cells)",
+            s.dem.particles().len(),
+            s.field.u.len()
+        ));
+    }
+    Ok(s)
+}
+
+/// The state `save` wrote ([`decode`]), after checking that it was written with the time
+/// step `dt` and the same column (`coupled`) and granular fields (`granular`) as this
+/// scene's, for a restart that goes on with it as it is.
+pub(crate) fn load(bytes: &[u8], dt: f64, coupled: bool, granular: bool) -> Result<State, String> {
+    let s = decode(bytes)?;
+    if !(s.column.is_some() == coupled && s.granular.is_some() == granular && s.dem.dt() == dt) {
         return Err(format!(
             "the DEM state does not fit this scene ({} particles, {} fluid cells, time step {:e} s)",
             s.dem.particles().len(),

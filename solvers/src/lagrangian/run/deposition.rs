@@ -51,7 +51,7 @@ impl Lagrangian<'_> {
     }
 
     /// The bed is down: restore the flow's body force, fix the rough layer or stop the
-    /// particles, forget the contacts, fit the column and start the flow's clocks.
+    /// particles, forget the contacts, then start the flow ([`Lagrangian::start_flow`]).
     fn finish_deposition(&mut self) -> Result<(), Breakdown> {
         self.state.dem.body = self.params.flow_body;
         if self.params.cfg.settings.numerics.bottom == Bottom::Rough {
@@ -64,11 +64,15 @@ impl Lagrangian<'_> {
             }
         }
         self.state.dem.reset_topology();
-        if self.params.cfg.settings.numerics.surface == Surface::Deposit
-            && self.params.cfg.settings.numerics.fluid != FluidMode::Off
-        {
-            self.fit_column_to_deposit()?;
-        }
+        self.start_flow()
+    }
+
+    /// Start the flow on the grains as they lie: the column fitted to their deposit (with
+    /// `surface = "deposit"`), every grain's fluid forces and random stream fresh from the
+    /// seed, the clocks at zero. The end of a deposition and a warm start share it, so that
+    /// a warm-started flow starts as the scene's own would but for its grains.
+    pub(super) fn start_flow(&mut self) -> Result<(), Breakdown> {
+        // the forces first: the deposit's measure sums over them, one per grain as they lie
         let n = self.state.dem.p.len();
         let fallback = self.state.forces.fallback_period;
         self.state.forces = FluidForces::new(
@@ -80,6 +84,11 @@ impl Lagrangian<'_> {
         );
         self.state.forces.fallback_period = fallback;
         self.state.forces.restart_fluctuations();
+        if self.params.cfg.settings.numerics.surface == Surface::Deposit
+            && self.params.cfg.settings.numerics.fluid != FluidMode::Off
+        {
+            self.fit_column_to_deposit()?;
+        }
         self.state.dem.time = 0.0;
         self.state.stage = Stage::Flow;
         Ok(())

@@ -12,6 +12,7 @@ pub mod setup;
 pub mod solver;
 pub mod state;
 mod stepping;
+pub mod warm;
 pub mod workspace;
 
 /// The stages of a flow step whose wall time the solver counts besides the engine's
