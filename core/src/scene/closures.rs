@@ -9,6 +9,7 @@ use serde::de::DeserializeOwned;
 use serde::Serialize;
 
 use super::de_path;
+use super::solver::{Solver, SolverKind};
 use super::tables::Particles;
 use crate::closure::Family;
 use crate::error::{Error, Result};
@@ -263,23 +264,101 @@ where
     })
 }
 
+/// The scene's `[closures]` value as a table (empty when absent).
+fn closures_table(value: Option<toml::Value>, file: &Path) -> Result<toml::Table> {
+    match value {
+        None => Ok(toml::Table::new()),
+        Some(toml::Value::Table(t)) => Ok(t),
+        Some(other) => Err(Error::Key {
+            file: file.into(),
+            key: "closures".into(),
+            message: format!("expected a table, found {}", other.type_str()),
+        }),
+    }
+}
+
+/// Refuse a key of `[solver.<solver>.closures]` that is not a closure family.
+fn check_face(face: &toml::Table, solver: &str, file: &Path) -> Result<()> {
+    match face.keys().find(|k| Family::from_key(k).is_none()) {
+        Some(k) => {
+            let known: Vec<_> = Family::ALL.iter().map(|f| f.key()).collect();
+            Err(Error::Key {
+                file: file.into(),
+                key: format!("solver.{solver}.closures.{k}"),
+                message: format!("unknown closure family; known: {}", known.join(", ")),
+            })
+        }
+        None => Ok(()),
+    }
+}
+
 impl Closures {
-    /// Read `[closures]`; the granular closure inherits what it does not set from
-    /// `particles`.
-    pub(super) fn load(value: Option<toml::Value>, particles: &Particles, file: &Path) -> Result<Closures> {
-        let mut table = match value {
-            None => toml::Table::new(),
-            Some(toml::Value::Table(t)) => t,
-            Some(other) => {
-                return Err(Error::Key {
-                    file: file.into(),
-                    key: "closures".into(),
-                    message: format!("expected a table, found {}", other.type_str()),
-                })
+    /// The closures of the active solver `solver.kind`: the scene's `[closures]` with the
+    /// tables of `[solver.<active>.closures]` in place of the families they hold. The
+    /// other solver's face is read and checked as well (so that `check` refuses what a
+    /// switch of `solver.type` would), and given, for each family the active face
+    /// replaced and it does not hold, the scene's shared table: the resolved scene then
+    /// records in `[closures]` what ran and still resolves to the same closures for the
+    /// other solver.
+    pub(super) fn load_faces(
+        value: Option<toml::Value>,
+        solver: &mut Solver,
+        particles: &Particles,
+        file: &Path,
+    ) -> Result<Closures> {
+        let shared = closures_table(value, file)?;
+        for (name, face) in [("eulerian", &solver.eulerian.closures), ("lagrangian", &solver.lagrangian.closures)] {
+            check_face(face, name, file)?;
+        }
+        let (active, active_key, other, other_key) = match solver.kind {
+            SolverKind::Eulerian => (
+                &solver.eulerian.closures,
+                "solver.eulerian.closures",
+                &mut solver.lagrangian.closures,
+                "solver.lagrangian.closures",
+            ),
+            SolverKind::Lagrangian => (
+                &solver.lagrangian.closures,
+                "solver.lagrangian.closures",
+                &mut solver.eulerian.closures,
+                "solver.eulerian.closures",
+            ),
+        };
+        Self::load_with(shared.clone(), other, other_key, particles, file)?;
+        for family in active.keys() {
+            if other.contains_key(family) {
+                continue;
+            }
+            let table = shared.get(family).cloned().or_else(|| {
+                let (_, name) = DEFAULT_MODELS.iter().find(|(f, _)| f.key() == family.as_str())?;
+                let mut t = toml::Table::new();
+                t.insert("type".into(), toml::Value::String((*name).into()));
+                Some(toml::Value::Table(t))
+            });
+            if let Some(t) = table {
+                other.insert(family.clone(), t);
+            }
+        }
+        Self::load_with(shared, active, active_key, particles, file)
+    }
+
+    /// The closures of `shared` (the scene's `[closures]`) with those of `face` (found at
+    /// key path `face_key`) in place of the families it holds.
+    fn load_with(
+        mut shared: toml::Table,
+        face: &toml::Table,
+        face_key: &str,
+        particles: &Particles,
+        file: &Path,
+    ) -> Result<Closures> {
+        let mut c = Closures::default();
+        let mut take = |f: Family| {
+            let own = shared.remove(f.key()).map(|v| (v, format!("closures.{}", f.key())));
+            match face.get(f.key()) {
+                Some(v) => Some((v.clone(), format!("{face_key}.{}", f.key()))),
+                None => own,
             }
         };
-        let mut c = Closures::default();
-        let mut take = |f: Family| table.remove(f.key()).map(|v| (v, format!("closures.{}", f.key())));
         if let Some((v, k)) = take(Family::Drag) {
             c.drag = Some(closure_from_value(v, Family::Drag, file, &k)?);
         }
@@ -302,7 +381,7 @@ impl Closures {
         if let Some((v, k)) = take(Family::WallFriction) {
             c.wall_friction = Some(closure_from_value(v, Family::WallFriction, file, &k)?);
         }
-        if let Some(k) = table.keys().next() {
+        if let Some(k) = shared.keys().next() {
             let known: Vec<_> = Family::ALL.iter().map(|f| f.key()).collect();
             return Err(Error::Key {
                 file: file.into(),

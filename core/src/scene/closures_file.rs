@@ -55,7 +55,8 @@ pub fn closures_file_tables(path: &Path) -> Result<toml::Table> {
 }
 
 /// Replace the `[closures.<family>]` tables of raw scene `table` by those of closures
-/// file `path` and record the file in `meta.closures_file`; returns the families
+/// file `path` (and remove those families from the solvers' `[solver.<face>.closures]`)
+/// and record the file in `meta.closures_file`; returns the families
 /// replaced (their keys).
 pub fn apply_closures_file(table: &mut toml::Table, path: &Path) -> Result<Vec<String>> {
     let given = closures_file_tables(path)?;
@@ -69,6 +70,18 @@ pub fn apply_closures_file(table: &mut toml::Table, path: &Path) -> Result<Vec<S
     };
     for (k, v) in given {
         closures.insert(k, v);
+    }
+    // the file's closures are those that run, whichever solver: they replace the
+    // solvers' own tables of their families too
+    for face in super::overrides::FACES {
+        if let Some(tables) = table
+            .get_mut("solver")
+            .and_then(|s| s.get_mut(face))
+            .and_then(|f| f.get_mut("closures"))
+            .and_then(|c| c.as_table_mut())
+        {
+            tables.retain(|k, _| !families.iter().any(|f| f == k));
+        }
     }
     let meta = table.entry("meta").or_insert_with(|| toml::Value::Table(toml::Table::new()));
     if let Some(meta) = meta.as_table_mut() {

@@ -237,6 +237,12 @@ pub struct LagrangianSettings {
     pub vtk_period: f64,
     /// cap on DEM steps
     pub max_steps: u64,
+    /// closure tables that replace the scene's `[closures.<family>]`, family by family,
+    /// when the DEM runs (the DEM face of a closure whose coupling differs between the
+    /// solvers: a fluid-phase viscosity that already holds the grains' share of the
+    /// stress the DEM's drag exchange carries)
+    #[serde(skip_serializing_if = "toml::Table::is_empty")]
+    pub closures: toml::Table,
 }
 
 impl Default for LagrangianSettings {
@@ -272,6 +278,7 @@ impl Default for LagrangianSettings {
             threads: 0,
             vtk_period: 0.0,
             max_steps: 1_000_000_000_000,
+            closures: toml::Table::new(),
         }
     }
 }

@@ -268,7 +268,7 @@ impl Scene {
         base.domain.check(file)?;
         base.solver.eulerian.check(file)?;
         base.solver.lagrangian.check(file, base.particles.diameter)?;
-        let closures = Closures::load(closures_value, &base.particles, file)?;
+        let closures = Closures::load_faces(closures_value, &mut base.solver, &base.particles, file)?;
         let mut scene = Scene {
             meta: base.meta,
             seed: base.seed,

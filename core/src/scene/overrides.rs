@@ -22,6 +22,10 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
 
 /// Apply one `KEY=VALUE` override to a raw scene table. VALUE is parsed as a TOML value
 /// (so `0.3`, `"text"`, `{type = "stokes"}` work); a bare word is taken as a string.
+/// An override of a closure goes to the table of that family that runs, whichever
+/// solver: `closures.<family>={...}` replaces the scene's table and those of the
+/// solvers' faces (`[solver.<face>.closures.<family>]`, which it removes), and
+/// `closures.<family>.<key>=v` sets the key in each of them.
 pub fn apply_override(table: &mut toml::Table, spec: &str) -> Result<()> {
     let (key, raw) =
         spec.split_once('=').ok_or_else(|| Error::Invalid(format!("--set `{spec}`: expected KEY=VALUE")))?;
@@ -36,15 +40,43 @@ pub fn apply_override(table: &mut toml::Table, spec: &str) -> Result<()> {
     if parts.iter().any(|p| p.is_empty()) {
         return Err(Error::Invalid(format!("--set `{spec}`: empty key segment")));
     }
+    if let ["closures", family, rest @ ..] = parts.as_slice() {
+        for face in FACES {
+            let Some(tables) = table
+                .get_mut("solver")
+                .and_then(|s| s.get_mut(face))
+                .and_then(|f| f.get_mut("closures"))
+                .and_then(|c| c.as_table_mut())
+            else {
+                continue;
+            };
+            if rest.is_empty() {
+                tables.remove(*family);
+            } else if let Some(toml::Value::Table(own)) = tables.get_mut(*family) {
+                insert_at(own, rest, value.clone(), spec)?;
+            }
+        }
+    }
+    insert_at(table, &parts, value, spec)
+}
+
+/// The solvers whose `[solver.<face>.closures]` tables may replace the scene's.
+pub const FACES: [&str; 2] = ["eulerian", "lagrangian"];
+
+/// Put `value` at key path `parts` of `table`, making the tables on the way.
+fn insert_at(table: &mut toml::Table, parts: &[&str], value: toml::Value, spec: &str) -> Result<()> {
+    let Some((last, path)) = parts.split_last() else {
+        return Err(Error::Invalid(format!("--set `{spec}`: empty key")));
+    };
     let mut cur = table;
-    for p in &parts[..parts.len() - 1] {
+    for p in path {
         let entry = cur.entry(p.to_string()).or_insert_with(|| toml::Value::Table(toml::Table::new()));
         cur = match entry {
             toml::Value::Table(t) => t,
             _ => return Err(Error::Invalid(format!("--set `{spec}`: `{p}` is not a table"))),
         };
     }
-    cur.insert(parts[parts.len() - 1].to_string(), value);
+    cur.insert(last.to_string(), value);
     Ok(())
 }
 
@@ -72,5 +104,23 @@ mod tests {
         assert_eq!(t["closures"]["drag"]["type"].as_str(), Some("stokes"));
         assert_eq!(t["physics"]["slope"].as_float(), Some(0.05));
         assert!(apply_override(&mut t, "noequals").is_err());
+    }
+
+    #[test]
+    fn a_closure_override_reaches_the_solvers_faces() {
+        let text = "[closures.viscosity]\ntype = \"fry2024\"\nshields = 0.67\n\
+                    [solver.lagrangian.closures.viscosity]\ntype = \"fry2024\"\nshields = 0.5\n\
+                    [solver.eulerian.closures.drag]\ntype = \"stokes\"\n";
+        let mut t: toml::Table = text.parse().unwrap();
+        apply_override(&mut t, "closures.viscosity.shields=0.8").unwrap();
+        assert_eq!(t["closures"]["viscosity"]["shields"].as_float(), Some(0.8));
+        assert_eq!(t["solver"]["lagrangian"]["closures"]["viscosity"]["shields"].as_float(), Some(0.8));
+        // a face without the family is not given it
+        assert!(t["solver"]["eulerian"]["closures"].get("viscosity").is_none());
+        apply_override(&mut t, "closures.viscosity={type=\"clear_fluid\"}").unwrap();
+        assert!(t["solver"]["lagrangian"]["closures"].get("viscosity").is_none());
+        apply_override(&mut t, "closures.drag={type=\"dallavalle\"}").unwrap();
+        assert!(t["solver"]["eulerian"]["closures"].get("drag").is_none());
+        assert_eq!(t["closures"]["drag"]["type"].as_str(), Some("dallavalle"));
     }
 }

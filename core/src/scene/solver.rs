@@ -83,6 +83,11 @@ pub struct EulerianSettings {
     pub initial_temperature: f64,
     /// how time is stepped ([`TimeStepping`])
     pub time_stepping: TimeStepping,
+    /// closure tables that replace the scene's `[closures.<family>]`, family by family,
+    /// when this solver runs (the Eulerian face of a closure whose coupling differs
+    /// between the solvers)
+    #[serde(skip_serializing_if = "toml::Table::is_empty")]
+    pub closures: toml::Table,
 }
 
 /// `solver.eulerian.time_stepping`: march to a steady state, or follow the flow in time.
@@ -118,6 +123,7 @@ impl Default for EulerianSettings {
             elastic_phi_rlp: None,
             initial_temperature: 1e-6,
             time_stepping: TimeStepping::Steady,
+            closures: toml::Table::new(),
         }
     }
 }
