@@ -101,8 +101,18 @@ pub enum KOmegaWall {
 ///   3-5, lambda -> 0.01 and the drag damping (12-18 /s) holds k down; the Reynolds stress in
 ///   the sheet is 0.03-0.5 u*^2 against 0.9 measured and the surface velocity 1.43 m/s
 ///   against 0.87. The response is steep (mu(I) scene: C_s = 0.2, 0.25, 0.3, 0.5 give 0.63,
-///   0.82, 0.99, 1.27 m/s), docs/notes/k_omega_drag_damping.md. The same C_s holds for every scene; it only
-///   acts where phi > 0 and the particles do not follow the eddies (St not small).
+///   0.82, 0.99, 1.27 m/s), docs/notes/k_omega_drag_damping.md. It only acts where phi > 0
+///   and the particles do not follow the eddies (St not small).
+/// * One value per solver face. 0.25 is the two-fluid model's (the default). The DEM's
+///   sheet takes table 1's C_s = 1, Cheng's own calibration with a DEM sheet, with the
+///   drag damping's beta from eq 24's time-averaged slip (`slip_average_start`, t_0 =
+///   5 s): case MB in the DEM with the eddy-interaction model gives qs* 1.82 (Cheng 1.89)
+///   and a surface velocity of 0.88 m/s (data 0.87)
+///   (`cases/revil_baudard2015/mobile_bed_dem_k_omega_eim.toml`,
+///   docs/notes/k_omega_dem_coupling.md). Both faces then take beta of the mean slip; why
+///   the continuum's sheet needs the weaker damping is not established (its phi profile,
+///   without the grains' eddy-driven dispersion, is the untested candidate). A scene that
+///   runs both solvers gives the DEM's value in `[solver.lagrangian.closures.turbulence]`.
 /// * Initial state: outside the bed the log-layer equilibrium of the forcing (uniform); in
 ///   the bed (weight Gamma of eq 32) k = 0 and omega = omega_bed, the state the in-bed
 ///   relaxation of eq 26 and the drag damping of eq 21 lead to (no shear, no production),
