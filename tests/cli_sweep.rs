@@ -306,6 +306,24 @@ fn the_shipped_dem_sweeps_resolve_to_the_hand_written_points() {
         }
     }
     assert_eq!(matched, 2 * 8, "the eight depths of sweep3d_drw.toml among the eleven");
+    // its warm-started copy: the same points, each warm point's window 5-55 s, the first
+    // of each series (from rest) 10-55 s
+    let warm = d.join("fig6_warm");
+    let o = saltus(&["sweep", "cases/maurin2015/figure6_sweep_warm.toml", "--emit", warm.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for (k, theta) in thetas.iter().enumerate() {
+        let read = |name: &Path| -> toml::Table { std::fs::read_to_string(name).unwrap().parse().unwrap() };
+        let cold = read(&fig6.join(format!("point_{k:04}.toml")));
+        let hot = read(&warm.join(format!("point_{k:04}.toml")));
+        assert_eq!(hot["domain"]["water_depth"].as_float(), cold["domain"]["water_depth"].as_float());
+        assert_eq!(
+            hot["solver"]["lagrangian"]["cells"].as_integer(),
+            cold["solver"]["lagrangian"]["cells"].as_integer()
+        );
+        assert_eq!(hot["solver"]["lagrangian"]["end_time"].as_float(), Some(55.0));
+        let start = if *theta == 0.03 { 10.0 } else { 5.0 };
+        assert_eq!(hot["solver"]["lagrangian"]["stats_start"].as_float(), Some(start), "theta {theta}");
+    }
     let t4 = d.join("t4");
     let o = saltus(&["sweep", "cases/revil_baudard2015/table4.toml", "--emit", t4.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
