@@ -277,14 +277,15 @@ fn closures_table(value: Option<toml::Value>, file: &Path) -> Result<toml::Table
     }
 }
 
-/// Refuse a key of `[solver.<solver>.closures]` that is not a closure family.
-fn check_face(face: &toml::Table, solver: &str, file: &Path) -> Result<()> {
-    match face.keys().find(|k| Family::from_key(k).is_none()) {
+/// Refuse a key of closure tables `tables` (found at key path `prefix`) that is not a
+/// closure family.
+fn check_families(tables: &toml::Table, prefix: &str, file: &Path) -> Result<()> {
+    match tables.keys().find(|k| Family::from_key(k).is_none()) {
         Some(k) => {
             let known: Vec<_> = Family::ALL.iter().map(|f| f.key()).collect();
             Err(Error::Key {
                 file: file.into(),
-                key: format!("solver.{solver}.closures.{k}"),
+                key: format!("{prefix}.{k}"),
                 message: format!("unknown closure family; known: {}", known.join(", ")),
             })
         }
@@ -307,9 +308,9 @@ impl Closures {
         file: &Path,
     ) -> Result<Closures> {
         let shared = closures_table(value, file)?;
-        for (name, face) in [("eulerian", &solver.eulerian.closures), ("lagrangian", &solver.lagrangian.closures)] {
-            check_face(face, name, file)?;
-        }
+        check_families(&shared, "closures", file)?;
+        check_families(&solver.eulerian.closures, "solver.eulerian.closures", file)?;
+        check_families(&solver.lagrangian.closures, "solver.lagrangian.closures", file)?;
         let (active, active_key, other, other_key) = match solver.kind {
             SolverKind::Eulerian => (
                 &solver.eulerian.closures,
@@ -380,14 +381,6 @@ impl Closures {
         }
         if let Some((v, k)) = take(Family::WallFriction) {
             c.wall_friction = Some(closure_from_value(v, Family::WallFriction, file, &k)?);
-        }
-        if let Some(k) = shared.keys().next() {
-            let known: Vec<_> = Family::ALL.iter().map(|f| f.key()).collect();
-            return Err(Error::Key {
-                file: file.into(),
-                key: format!("closures.{k}"),
-                message: format!("unknown closure family; known: {}", known.join(", ")),
-            });
         }
         if c.drag.is_none() {
             c.drag = Some(default_closure(Family::Drag, file)?);

@@ -74,12 +74,7 @@ pub fn apply_closures_file(table: &mut toml::Table, path: &Path) -> Result<Vec<S
     // the file's closures are those that run, whichever solver: they replace the
     // solvers' own tables of their families too
     for face in super::overrides::FACES {
-        if let Some(tables) = table
-            .get_mut("solver")
-            .and_then(|s| s.get_mut(face))
-            .and_then(|f| f.get_mut("closures"))
-            .and_then(|c| c.as_table_mut())
-        {
+        if let Some(tables) = super::overrides::face_tables_mut(table, face) {
             tables.retain(|k, _| !families.iter().any(|f| f == k));
         }
     }

@@ -42,12 +42,7 @@ pub fn apply_override(table: &mut toml::Table, spec: &str) -> Result<()> {
     }
     if let ["closures", family, rest @ ..] = parts.as_slice() {
         for face in FACES {
-            let Some(tables) = table
-                .get_mut("solver")
-                .and_then(|s| s.get_mut(face))
-                .and_then(|f| f.get_mut("closures"))
-                .and_then(|c| c.as_table_mut())
-            else {
+            let Some(tables) = face_tables_mut(table, face) else {
                 continue;
             };
             if rest.is_empty() {
@@ -62,6 +57,11 @@ pub fn apply_override(table: &mut toml::Table, spec: &str) -> Result<()> {
 
 /// The solvers whose `[solver.<face>.closures]` tables may replace the scene's.
 pub const FACES: [&str; 2] = ["eulerian", "lagrangian"];
+
+/// The raw `[solver.<face>.closures]` table of scene `table`, if it has one.
+pub fn face_tables_mut<'a>(table: &'a mut toml::Table, face: &str) -> Option<&'a mut toml::Table> {
+    table.get_mut("solver")?.get_mut(face)?.get_mut("closures")?.as_table_mut()
+}
 
 /// Put `value` at key path `parts` of `table`, making the tables on the way.
 fn insert_at(table: &mut toml::Table, parts: &[&str], value: toml::Value, spec: &str) -> Result<()> {
