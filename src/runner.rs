@@ -209,10 +209,12 @@ pub fn describe(p: &Progress) -> String {
     s
 }
 
-/// Wall time left in the phase at its pace so far (s): `None` before any progress.
-fn eta(p: &Progress, phase_wall: f64) -> Option<f64> {
-    let left = (p.end_time - p.time).max(0.0);
-    (p.time > 0.0 && phase_wall > 0.0).then(|| left * phase_wall / p.time).filter(|e| e.is_finite())
+/// Wall time left in the phase at its pace so far (s): `None` before any progress. The
+/// pace counts from `t0`, the simulated time at which this run entered the phase (a
+/// restart enters the flow at its checkpoint's time, not at 0).
+fn eta(p: &Progress, phase_wall: f64, t0: f64) -> Option<f64> {
+    let (left, done) = ((p.end_time - p.time).max(0.0), p.time - t0);
+    (done > 0.0 && phase_wall > 0.0).then(|| left * phase_wall / done).filter(|e| e.is_finite())
 }
 
 /// Load a scene and check it whole: the schema with the `--set KEY=VALUE` overrides
@@ -261,7 +263,7 @@ pub fn run_scene_with(
     let mut last: Option<Instant> = None;
     let started = Instant::now();
     let mut next_line = settings.log_every.unwrap_or(Duration::MAX);
-    let mut phase: Option<(Phase, Instant)> = None;
+    let mut phase: Option<(Phase, Instant, f64)> = None;
     let label = if bar.prefix().is_empty() { scene.meta.name.clone() } else { bar.prefix() };
     let mut observer = |p: &Progress| {
         // a closure registered at run time that failed (its function raised) returns NaN
@@ -269,15 +271,15 @@ pub fn run_scene_with(
         if stop(p) || scene.closures.failure().is_some() {
             return Control::Stop;
         }
-        if phase.map(|(ph, _)| ph) != Some(p.phase) {
-            phase = Some((p.phase, Instant::now()));
+        if phase.map(|(ph, ..)| ph) != Some(p.phase) {
+            phase = Some((p.phase, Instant::now(), p.time));
             if !bar.is_hidden() {
                 bar.set_style(template(&bar.prefix(), "[{elapsed_precise}] {bar:30.cyan/blue} eta {eta:>4} {msg}"));
                 bar.reset_eta();
                 last = None;
             }
         }
-        let phase_wall = phase.map_or(0.0, |(_, t)| t.elapsed().as_secs_f64());
+        let (phase_wall, t0) = phase.map_or((0.0, 0.0), |(_, t, t0)| (t.elapsed().as_secs_f64(), t0));
         if bar.is_hidden() {
             let Some(every) = settings.log_every.filter(|e| !e.is_zero()) else { return Control::Continue };
             let elapsed = started.elapsed();
@@ -285,7 +287,7 @@ pub fn run_scene_with(
                 while next_line <= elapsed {
                     next_line += every;
                 }
-                let left = eta(p, phase_wall).map_or_else(String::new, |e| format!("  eta {e:.0} s"));
+                let left = eta(p, phase_wall, t0).map_or_else(String::new, |e| format!("  eta {e:.0} s"));
                 crate::errln!("{label}: [{:.0} s] {}{left}", elapsed.as_secs_f64(), describe(p));
             }
         } else if !matches!(last, Some(t) if t.elapsed() < Duration::from_millis(50)) {
@@ -459,5 +461,23 @@ mod tests {
         let e = read_columns(&f, &["z".into(), "phi".into()]).unwrap_err().to_string();
         assert!(e.contains("`phi`") && e.contains("abc"), "{e}");
         let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn the_time_left_counts_the_pace_from_where_the_run_entered_its_phase() {
+        let p = Progress {
+            phase: Phase::Flow,
+            time: 110.0,
+            end_time: 150.0,
+            steps: 0,
+            total_steps: 0,
+            dt: 1e-4,
+            residual: None,
+        };
+        // from rest: 110 s of flow in 10 s of wall time
+        assert!((eta(&p, 10.0, 0.0).unwrap() - 40.0 / 11.0).abs() < 1e-12);
+        // restarted at 100 s: 10 s of flow in 10 s
+        assert!((eta(&p, 10.0, 100.0).unwrap() - 40.0).abs() < 1e-12);
+        assert_eq!(eta(&p, 10.0, 110.0), None);
     }
 }
