@@ -261,8 +261,16 @@ fn an_interrupted_sweep_keeps_its_finished_points_and_resumes() {
         assert_eq!(summary(&out.join("point_0001"))["ending"], "interrupted");
     }
     let kept = std::fs::read_to_string(&first).unwrap();
+    let wall_before = manifest["points"][1]["wall_time_s"].as_f64();
     let o = saltus(&["sweep", file.to_str().unwrap(), "--out", out.to_str().unwrap(), "--resume"]);
     assert!(o.status.success(), "{}", stderr(&o));
+    if status[1] == "interrupted" && out.join("point_0001/checkpoint.bin").is_file() {
+        // a continued point's cost counts what it ran before the interrupt
+        let m: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("sweep.json")).unwrap()).unwrap();
+        let (before, after) = (wall_before.unwrap(), m["points"][1]["wall_time_s"].as_f64().unwrap());
+        assert!(after > before, "wall time {after} s after the resume, {before} s before it");
+    }
     assert_eq!(std::fs::read_to_string(&first).unwrap(), kept, "the finished point was run again");
     let (h, rows) = read_table(&out.join("sweep.csv"));
     assert!(rows.iter().all(|r| cell(&h, r, "status") == "done" && cell(&h, r, "ending") == "end_time"), "{rows:?}");
@@ -327,9 +335,23 @@ fn the_shipped_dem_sweeps_resolve_to_the_hand_written_points() {
     let t4 = d.join("t4");
     let o = saltus(&["sweep", "cases/revil_baudard2015/table4.toml", "--emit", t4.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let s: toml::Table = std::fs::read_to_string(t4.join("point_0000.toml")).unwrap().parse().unwrap();
-    assert_eq!(s["physics"]["pressure_gradient"].as_float(), Some(11.7007));
-    assert_eq!(s["solver"]["lagrangian"]["stats_start"].as_float(), Some(100.0));
+    // with the EIM 100-150 s; without it 200-300 s, and 300-450 s at the table's theta 1.0
+    // and 1.2 (the last two gradients)
+    for k in 0..14 {
+        let s: toml::Table = std::fs::read_to_string(t4.join(format!("point_{k:04}.toml"))).unwrap().parse().unwrap();
+        let l = &s["solver"]["lagrangian"];
+        let window = (l["stats_start"].as_float().unwrap(), l["end_time"].as_float().unwrap());
+        let eim = s["closures"]["fluctuation"]["type"].as_str() == Some("eim");
+        let expect = match (eim, k / 2) {
+            (true, _) => (100.0, 150.0),
+            (false, 5 | 6) => (300.0, 450.0),
+            (false, _) => (200.0, 300.0),
+        };
+        assert_eq!(window, expect, "point {k}, eim {eim}");
+        if k == 0 {
+            assert_eq!(s["physics"]["pressure_gradient"].as_float(), Some(11.7007));
+        }
+    }
     assert_eq!(
         std::fs::read_dir(&t4)
             .unwrap()

@@ -132,3 +132,22 @@ fn a_parent_stopped_in_its_deposition_gives_no_warm_start() {
     assert!(why.contains("deposition"), "{why}");
     assert!(num(&h, &r[1], "total_steps") > num(&h, &r[1], "steps"));
 }
+
+/// A DEM point on threads of its own (`solver.lagrangian.threads = 1`: the run's own pool):
+/// the manifest's CPU time is the run's, its summary's, not the driving thread's alone.
+#[test]
+fn a_dem_point_on_its_own_threads_counts_their_cpu_time() {
+    let d = tmp_dir("sweep_dem_cpu");
+    let file = dem_sweep(
+        &d,
+        "own.toml",
+        "set = [\"solver.lagrangian.threads=1\"]\n[[axis]]\nkey = \"physics.slope\"\nvalues = [0.1]\n",
+    );
+    let out = d.join("out");
+    let (h, r) = sweep(&file, &out, "1");
+    assert_eq!(cell(&h, &r[0], "status"), "done");
+    let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("sweep.json")).unwrap()).unwrap();
+    let run = summary(&out.join("point_0000"))["cpu_time_s"].as_f64().unwrap();
+    assert!(run > 0.0);
+    assert_eq!(m["points"][0]["cpu_time_s"].as_f64(), Some(run), "{m}");
+}

@@ -56,10 +56,11 @@ pub struct PointEntry {
     /// how the run ended (`summary.json`'s ending)
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ending: Option<String>,
-    /// wall-clock time of the run (s)
+    /// wall-clock time of the run (s), summed over its continuations (`--resume`)
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wall_time_s: Option<f64>,
-    /// CPU time of the thread that ran the point (s), where the system tells it
+    /// CPU time of the run (s): its summary's `cpu_time_s` (the driving thread and the
+    /// solver's own pool), else the driving thread's; summed over its continuations
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cpu_time_s: Option<f64>,
     /// folder of the point whose state this one started from (a warm start)

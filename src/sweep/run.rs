@@ -220,15 +220,19 @@ fn worker(ctx: &Work, shared: &Mutex<Shared>) {
         };
         let mut s = shared.lock().unwrap_or_else(|e| e.into_inner());
         let entry = &mut s.manifest.points[i];
-        entry.cpu_time_s = cpu;
-        entry.wall_time_s = Some(wall);
+        // a DEM point runs on its own pool, whose threads this one's clock does not see:
+        // the summary's CPU time counts them; a continued point adds what it cost before
+        let cpu = result.as_ref().ok().and_then(|r| r.5).or(cpu);
+        let before = |t: Option<f64>| if continued { t.unwrap_or(0.0) } else { 0.0 };
+        entry.cpu_time_s = cpu.map(|c| c + before(entry.cpu_time_s));
+        entry.wall_time_s = Some(wall + before(entry.wall_time_s));
         if !continued {
             entry.warm_start_from = warm_from.clone();
             entry.warm_start_refused = None;
         }
         let line;
         match result {
-            Ok((status, ending, error, warnings, refused)) => {
+            Ok((status, ending, error, warnings, refused, _)) => {
                 if refused.is_some() {
                     // started from rest: it did not start from the parent
                     entry.warm_start_from = None;
@@ -273,7 +277,7 @@ fn worker(ctx: &Work, shared: &Mutex<Shared>) {
 
 /// Status, ending, error and warnings of a point's run, and why it started from rest when
 /// its warm start was refused.
-type PointResult = (Status, Option<String>, Option<String>, Vec<String>, Option<String>);
+type PointResult = (Status, Option<String>, Option<String>, Vec<String>, Option<String>, Option<f64>);
 
 fn run_point(
     sweep: &Sweep,
@@ -298,8 +302,9 @@ fn run_point(
         _ => Status::Failed,
     };
     let ending = outcome.ending.as_ref().map(|e| e.name().to_string());
-    let _ = table::read_summary(dir)?;
-    Ok((status, ending, outcome.error, outcome.warnings, refused))
+    // the run's own CPU time: its solver's threads as well as the calling one
+    let cpu = table::read_summary(dir)?.and_then(|s| s.number("cpu_time_s"));
+    Ok((status, ending, outcome.error, outcome.warnings, refused, cpu))
 }
 
 impl Report {
