@@ -275,6 +275,10 @@ pub fn run_scene_with(
             phase = Some((p.phase, Instant::now(), p.time));
             if !bar.is_hidden() {
                 bar.set_style(template(&bar.prefix(), "[{elapsed_precise}] {bar:30.cyan/blue} eta {eta:>4} {msg}"));
+                // the bar's pace, as the line's, counts from where the run entered the
+                // phase (a checkpoint's time): the jump to it is not progress
+                bar.set_length((p.end_time * TICKS_PER_SECOND) as u64);
+                bar.set_position((p.time * TICKS_PER_SECOND) as u64);
                 bar.reset_eta();
                 last = None;
             }

@@ -302,8 +302,10 @@ fn run_point(
         _ => Status::Failed,
     };
     let ending = outcome.ending.as_ref().map(|e| e.name().to_string());
-    // the run's own CPU time: its solver's threads as well as the calling one
-    let cpu = table::read_summary(dir)?.and_then(|s| s.number("cpu_time_s"));
+    // the run's own CPU time: its solver's threads as well as the calling one (a run that
+    // failed may have left the summary of an earlier run in its folder)
+    let summary = table::read_summary(dir)?;
+    let cpu = summary.filter(|_| status != Status::Failed).and_then(|s| s.number("cpu_time_s"));
     Ok((status, ending, outcome.error, outcome.warnings, refused, cpu))
 }
 
