@@ -136,9 +136,19 @@ fn emitted_points_run_alone_and_collect_into_the_same_table() {
     assert!(o.status.success(), "{}", stderr(&o));
     let (h1, r1) = read_table(&jobs.join("sweep.csv"));
     let (h2, r2) = read_table(&here.join("sweep.csv"));
+    assert_eq!(h1, h2, "the same columns, collected or run here");
+    for name in &h1 {
+        assert_eq!(h1.iter().filter(|c| *c == name).count(), 1, "column {name} once: {h1:?}");
+    }
     for k in 0..2 {
         assert_eq!(cell(&h1, &r1[k], "status"), "done");
         assert_eq!(cell(&h1, &r1[k], "qs_star"), cell(&h2, &r2[k], "qs_star"), "point {k}");
+        // the collected point's cost is its run's, from its summary
+        let run = summary(&jobs.join(format!("point_000{k}")));
+        for clock in ["cpu_time_s", "wall_time_s"] {
+            let got: f64 = cell(&h1, &r1[k], clock).parse().unwrap();
+            assert_eq!(Some(got), run[clock].as_f64(), "point {k}, {clock}");
+        }
     }
 }
 

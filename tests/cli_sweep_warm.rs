@@ -36,6 +36,14 @@ fn first_qs(dir: &Path) -> f64 {
     num(&header, &rows[0], "qs")
 }
 
+/// The fluid column a run put over its deposit, from its profiles: the number of cells
+/// and the height of the last cell's centre (m).
+fn column(dir: &Path) -> (usize, f64) {
+    let (header, rows) = read_table(&dir.join("profiles.csv"));
+    let top = rows.last().map(|r| num(&header, r, "z")).unwrap_or(f64::NAN);
+    (rows.len(), top)
+}
+
 /// Each point after the first starts from its parent's grains: the parent leaves its
 /// final checkpoint, the child takes no deposition steps (all its steps are flow steps),
 /// keeps the parent's grains, and its flow starts on a moving bed, where from rest the bed
@@ -65,8 +73,46 @@ fn a_warm_started_dem_point_starts_its_flow_on_its_parents_moving_bed() {
             assert_eq!(num(&hw, &rw[k], "total_steps"), num(&hw, &rw[k], "steps"), "point {k}: a deposition");
             assert!(first_qs(&dw) > 0.0, "point {k}: its flow starts on a bed at rest");
             assert_eq!(cell(&hw, &rw[k], "particles"), cell(&hw, &rw[k - 1], "particles"), "point {k}");
+            // the grains still settle when the flow starts (0.1 s of deposition), so the
+            // parent's bed at its end is not its deposit: the free surface stands the
+            // same water depth above the deposit the chain's first point measured
+            assert_eq!(column(&dw), column(&d.join("warm").join("point_0000")), "point {k}: the column");
         }
     }
+}
+
+/// The deposit's surface is measured on every grain: under water shallower than the gap
+/// between the scene's nominal bed (`bed_height`) and the deposit's top, the grains
+/// standing above the scene's column count, and the surface is where it is under deep
+/// water.
+#[test]
+fn the_deposit_surface_is_measured_above_a_shallow_scenes_column() {
+    let d = tmp_dir("deposit_surface_shallow");
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/scenes/small_dem_bed.toml");
+    let surface = |depth: f64| {
+        let out = d.join(format!("h{depth}"));
+        let o = saltus(&[
+            "run",
+            base.to_str().unwrap(),
+            "--set",
+            "solver.lagrangian.settle_time=0.4",
+            "--set",
+            &format!("domain.water_depth={depth}"),
+            "--out",
+            out.to_str().unwrap(),
+            "-q",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let (n, z) = column(&out);
+        // the top of the column, whose n cells are uniform, less the water above the deposit
+        z * n as f64 / (n as f64 - 0.5) - depth
+    };
+    let (shallow, deep) = (surface(0.0005), surface(0.03));
+    let (d_grain, bed_height) = (6.0e-3, 0.012);
+    // the deposit (packing 0.55-0.6) stands 0.6 d above bed_height (at bed_phi 0.6): a
+    // measure capped by the column would lie below bed_height + 0.0005
+    assert!(shallow > bed_height + 0.0005 + 0.25 * d_grain, "surface {shallow} m: capped by the scene's column");
+    assert!((shallow - deep).abs() < 0.5 * d_grain, "shallow {shallow} m, deep {deep} m");
 }
 
 /// Which state a point starts from is fixed by its chain, not by the scheduling: one job

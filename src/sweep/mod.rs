@@ -219,6 +219,7 @@ pub fn collect(sweep: &Sweep, dir: &Path) -> anyhow::Result<Report> {
                 p.status = table::status_of(&s);
                 p.ending = s.text("ending").map(str::to_string);
                 p.wall_time_s = s.number("wall_time_s");
+                p.cpu_time_s = s.number("cpu_time_s");
                 p.error = s.text("error").map(str::to_string);
             }
             None => p.status = Status::Pending,

@@ -222,7 +222,7 @@ fn worker(ctx: &Work, shared: &Mutex<Shared>) {
         let entry = &mut s.manifest.points[i];
         // a DEM point runs on its own pool, whose threads this one's clock does not see:
         // the summary's CPU time counts them; a continued point adds what it cost before
-        let cpu = result.as_ref().ok().and_then(|r| r.5).or(cpu);
+        let cpu = result.as_ref().ok().and_then(|r| r.cpu_time_s).or(cpu);
         let before = |t: Option<f64>| if continued { t.unwrap_or(0.0) } else { 0.0 };
         entry.cpu_time_s = cpu.map(|c| c + before(entry.cpu_time_s));
         entry.wall_time_s = Some(wall + before(entry.wall_time_s));
@@ -232,7 +232,7 @@ fn worker(ctx: &Work, shared: &Mutex<Shared>) {
         }
         let line;
         match result {
-            Ok((status, ending, error, warnings, refused, _)) => {
+            Ok(PointResult { status, ending, error, warnings, refused, .. }) => {
                 if refused.is_some() {
                     // started from rest: it did not start from the parent
                     entry.warm_start_from = None;
@@ -275,9 +275,18 @@ fn worker(ctx: &Work, shared: &Mutex<Shared>) {
     }
 }
 
-/// Status, ending, error and warnings of a point's run, and why it started from rest when
-/// its warm start was refused.
-type PointResult = (Status, Option<String>, Option<String>, Vec<String>, Option<String>, Option<f64>);
+/// How a point's run ended.
+struct PointResult {
+    status: Status,
+    /// the ending's name (`steady`, `end_time`, `unstable`, ...)
+    ending: Option<String>,
+    error: Option<String>,
+    warnings: Vec<String>,
+    /// why the point started from rest when its warm start was refused
+    refused: Option<String>,
+    /// the run's CPU time from its summary, its solver's own threads counted
+    cpu_time_s: Option<f64>,
+}
 
 fn run_point(
     sweep: &Sweep,
@@ -306,7 +315,7 @@ fn run_point(
     // failed may have left the summary of an earlier run in its folder)
     let summary = table::read_summary(dir)?;
     let cpu = summary.filter(|_| status != Status::Failed).and_then(|s| s.number("cpu_time_s"));
-    Ok((status, ending, outcome.error, outcome.warnings, refused, cpu))
+    Ok(PointResult { status, ending, error: outcome.error, warnings: outcome.warnings, refused, cpu_time_s: cpu })
 }
 
 impl Report {

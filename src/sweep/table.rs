@@ -97,12 +97,18 @@ fn columns(summaries: &[Option<Fields>]) -> Vec<String> {
     cols
 }
 
+/// The manifest's columns of `sweep.csv`, after the axes: the point's cost counts every run
+/// of it (a resumed point's earlier runs too), so the summary's fields of these names,
+/// which count its last run, are not repeated.
+const MANIFEST_COLUMNS: [&str; 5] = ["status", "wall_time_s", "cpu_time_s", "warm_start_from", "warm_start_refused"];
+
 /// Header and rows of `sweep.csv` for `manifest` with the points' summaries.
 pub fn rows(manifest: &Manifest, summaries: &[Option<Fields>]) -> (Vec<String>, Vec<Vec<String>>) {
-    let cols = columns(summaries);
+    let mut cols = columns(summaries);
+    cols.retain(|c| !MANIFEST_COLUMNS.contains(&c.as_str()));
     let mut header = vec!["point".to_string(), "dir".into()];
     header.extend(manifest.axes.iter().map(|a| a.name.clone()));
-    header.extend(["status".to_string(), "cpu_time_s".into(), "warm_start_from".into(), "warm_start_refused".into()]);
+    header.extend(MANIFEST_COLUMNS.iter().map(|c| c.to_string()));
     header.extend(cols.iter().map(|c| if c == "error" { "run_error".into() } else { c.clone() }));
     let rows = manifest
         .points
@@ -115,6 +121,7 @@ pub fn rows(manifest: &Manifest, summaries: &[Option<Fields>]) -> (Vec<String>, 
                 row.push(k.map_or_else(String::new, |k| a.labels[k].clone()));
             }
             row.push(serde_json::to_value(p.status).ok().as_ref().map(cell).unwrap_or_default());
+            row.push(p.wall_time_s.map_or_else(String::new, |c| format!("{c:?}")));
             row.push(p.cpu_time_s.map_or_else(String::new, |c| format!("{c:?}")));
             row.push(p.warm_start_from.clone().unwrap_or_default());
             row.push(p.warm_start_refused.clone().unwrap_or_default());

@@ -64,14 +64,18 @@ impl Lagrangian<'_> {
             }
         }
         self.state.dem.reset_topology();
-        self.start_flow()
+        self.start_flow(None)
     }
 
     /// Start the flow on the grains as they lie: the column fitted to their deposit (with
     /// `surface = "deposit"`), every grain's fluid forces and random stream fresh from the
     /// seed, the clocks at zero. The end of a deposition and a warm start share it, so that
     /// a warm-started flow starts as the scene's own would but for its grains.
-    pub(super) fn start_flow(&mut self) -> Result<(), Breakdown> {
+    ///
+    /// `deposit` is the surface of the deposit when it is known (m above the column
+    /// bottom): a warm start's, measured when the carried grains lay at rest. `None`
+    /// measures it on the grains, which lie at rest only at the end of a deposition.
+    pub(super) fn start_flow(&mut self, deposit: Option<f64>) -> Result<(), Breakdown> {
         // the forces first: the deposit's measure sums over them, one per grain as they lie
         let n = self.state.dem.p.len();
         let fallback = self.state.forces.fallback_period;
@@ -87,7 +91,7 @@ impl Lagrangian<'_> {
         if self.params.cfg.settings.numerics.surface == Surface::Deposit
             && self.params.cfg.settings.numerics.fluid != FluidMode::Off
         {
-            self.fit_column_to_deposit()?;
+            self.fit_column_to_deposit(deposit)?;
         }
         self.state.dem.time = 0.0;
         self.state.stage = Stage::Flow;
@@ -95,28 +99,30 @@ impl Lagrangian<'_> {
     }
 
     /// Surface of the deposit above the column bottom (m): the highest level where the
-    /// packing, averaged over one diameter, is half its largest such average. It sums the
-    /// particles into the cell sums, so it is no getter.
-    fn measure_deposit_surface(&mut self) -> f64 {
+    /// packing, averaged over one diameter, is half its largest such average. The grains
+    /// are summed on slices of the column's height that reach above the highest grain: a
+    /// deposit packed looser than `bed_phi` stands above `bed_height`, and under shallow
+    /// water above the scene's column, whose top would otherwise cap the measure.
+    fn measure_deposit_surface(&self) -> f64 {
         let d = self.params.mat.d;
         let dz = self.state.field.dz;
-        let n = self.state.sums.vol.len();
+        let base = self.state.field.base;
+        let p = &self.state.dem.p;
+        let own = self.state.sums.vol.len();
+        let top = (0..p.len()).map(|a| p.z[a] + p.radius[a] - base).filter(|z| z.is_finite()).fold(0.0f64, f64::max);
+        // a grain thrown far above is no part of the deposit: the slices stop at four
+        // columns' heights
+        let n = own.max((top / dz).ceil() as usize + 1).min(4 * own.max(1));
+        let mut sums = CellSums::new(n);
         // only the volumes are read: either exchange would do
-        self.state.sums.accumulate(
-            &self.state.dem.p,
-            self.state.field.base,
-            dz,
-            &self.state.forces.k,
-            &self.state.forces.urx,
-            Seen::Centre,
-        );
+        sums.accumulate(p, base, dz, &self.state.forces.k, &self.state.forces.urx, Seen::Centre);
         let w = ((d / dz).round() as usize).max(1);
         // running sums: a window of w cells per cell would cost cells * d / dz, 1e11
         // operations for a million cells
         let mut prefix = Vec::with_capacity(n + 1);
         prefix.push(0.0);
         let mut acc = 0.0;
-        for &v in &self.state.sums.vol {
+        for &v in &sums.vol {
             acc += v;
             prefix.push(acc);
         }
@@ -133,10 +139,14 @@ impl Lagrangian<'_> {
         }
     }
 
-    /// Put the free surface `water_depth` above the deposit: a new column of the same
-    /// cell size (before the flow starts; it allocates).
-    fn fit_column_to_deposit(&mut self) -> Result<(), Breakdown> {
-        let surface = self.measure_deposit_surface();
+    /// Put the free surface `water_depth` above the deposit (its surface `deposit`, or
+    /// measured): a new column of the same cell size (before the flow starts; it
+    /// allocates).
+    fn fit_column_to_deposit(&mut self, deposit: Option<f64>) -> Result<(), Breakdown> {
+        let surface = match deposit {
+            Some(z) => z,
+            None => self.measure_deposit_surface(),
+        };
         let dz = self.state.field.dz;
         let height = surface + self.params.cfg.domain.water_depth;
         let cells = ((height / dz).round() as usize).max(2);

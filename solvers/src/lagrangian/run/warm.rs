@@ -5,7 +5,9 @@
 //! Carried: the particles (positions, velocities, spins, the fixed ones of the bottom)
 //! with their contact histories and neighbour list, and the half-cylinders of a Frey
 //! bottom (the grains lie on them). Rebuilt from this scene: the body force, the fluid
-//! column (cells, depth, at rest, fitted to the carried bed with `surface = "deposit"`),
+//! column (cells, depth, at rest; with `surface = "deposit"` its free surface
+//! `water_depth` above the surface the carried deposit had at rest, as the parent's
+//! deposition measured it and every warm start since carried it),
 //! every grain's fluid forces and random stream from this scene's seed, the statistics,
 //! the granular fields, the steady-state test and the time series, all empty, and the
 //! clocks at zero; the deposition is skipped. The statistics' `stats_start` is counted
@@ -14,7 +16,8 @@
 //! Refused ([`refusal`]): a checkpoint of another solver, a run that ended in its
 //! deposition, and a scene that differs from the checkpoint's in a key that makes other
 //! grains or gives them another meaning ([`GRAIN_KEYS`]: their count, sizes and
-//! material, the contact law and time step, the lateral cell, the walls and the bottom).
+//! material, the contact law and time step, the lateral cell, the walls and the bottom,
+//! and where the free surface stands).
 
 use saltus_core::scene::Scene;
 
@@ -28,8 +31,9 @@ use crate::run::checkpoint::{scene_differences_in, Restart};
 /// its grains to start this scene's flow: the particles' count (`particles`,
 /// `bed_height`, `bed_phi`, `gas_phi`, the list), sizes, material and contact law (and
 /// with them the time step, `dt_safety`, and the Verlet skin of the carried list), the
-/// lateral cell, the walls and the bottom.
-pub const GRAIN_KEYS: [&str; 17] = [
+/// lateral cell, the walls and the bottom, and `surface` (the carried deposit's surface is
+/// the level the free surface stands above).
+pub const GRAIN_KEYS: [&str; 18] = [
     "particles",
     "domain.bed_height",
     "domain.bed_phi",
@@ -46,6 +50,7 @@ pub const GRAIN_KEYS: [&str; 17] = [
     "solver.lagrangian.particle_list",
     "solver.lagrangian.dt_safety",
     "solver.lagrangian.skin",
+    "solver.lagrangian.surface",
     "solver.type",
 ];
 
@@ -93,11 +98,17 @@ impl Lagrangian<'_> {
         if !dem.same_bounds(own) {
             return Err("the box, the walls or the bottom differ from this scene's".into());
         }
+        // A moving bed measured as a deposit lies up to half a diameter below the same
+        // grains at rest (its top grains spread over the saltation layer), so the free
+        // surface is put above the surface the chain's deposit had at rest, as a point
+        // from rest puts it; `surface` is one of the grain keys, so the carried value is
+        // a measured deposit wherever this scene fits its column to one.
+        let deposit = parent.bed_surface;
         let mut dem = parent.dem;
         dem.body = self.params.flow_body;
         self.state.dem = dem;
         self.state.settle_steps = 0;
-        self.start_flow().map_err(|b| format!("the column on the carried bed: {b}"))?;
+        self.start_flow(Some(deposit)).map_err(|b| format!("the column on the carried bed: {b}"))?;
         if self.params.cfg.settings.numerics.fluid != FluidMode::Off {
             // the first drag and the first row of the time series see the carried bed
             self.average();
