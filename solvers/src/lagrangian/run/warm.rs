@@ -31,9 +31,10 @@ use crate::run::checkpoint::{scene_differences_in, Restart};
 /// its grains to start this scene's flow: the particles' count (`particles`,
 /// `bed_height`, `bed_phi`, `gas_phi`, the list), sizes, material and contact law (and
 /// with them the time step, `dt_safety`, and the Verlet skin of the carried list), the
-/// lateral cell, the walls and the bottom, and `surface` (the carried deposit's surface is
-/// the level the free surface stands above).
-pub const GRAIN_KEYS: [&str; 18] = [
+/// lateral cell, the walls and the bottom, and `surface` and `fluid` (the carried
+/// deposit's surface is the level the free surface stands above, measured only where the
+/// parent fitted a fluid column to its deposit).
+pub const GRAIN_KEYS: [&str; 19] = [
     "particles",
     "domain.bed_height",
     "domain.bed_phi",
@@ -51,6 +52,7 @@ pub const GRAIN_KEYS: [&str; 18] = [
     "solver.lagrangian.dt_safety",
     "solver.lagrangian.skin",
     "solver.lagrangian.surface",
+    "solver.lagrangian.fluid",
     "solver.type",
 ];
 
@@ -101,8 +103,8 @@ impl Lagrangian<'_> {
         // A moving bed measured as a deposit lies up to half a diameter below the same
         // grains at rest (its top grains spread over the saltation layer), so the free
         // surface is put above the surface the chain's deposit had at rest, as a point
-        // from rest puts it; `surface` is one of the grain keys, so the carried value is
-        // a measured deposit wherever this scene fits its column to one.
+        // from rest puts it; `surface` and `fluid` are grain keys, so the carried value
+        // is a measured deposit wherever this scene fits its column to one.
         let deposit = parent.bed_surface;
         let mut dem = parent.dem;
         dem.body = self.params.flow_body;
