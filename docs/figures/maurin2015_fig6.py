@@ -5,7 +5,8 @@
 
 RUNS_DIR holds one `saltus run` output folder per point, named `<series>_<nominal theta>`
 (e.g. `drw_0.1`, `nodrw_0.1`; docs/validation.md "Figure 6" gives
-the commands). For each point: qs* as the mean of block means of the `qs_star` column of
+the commands), or is the folder of `saltus sweep cases/maurin2015/figure6_sweep*.toml`
+(each point's window then starts at its own `stats_start` if that is after `--t0`). For each point: qs* as the mean of block means of the `qs_star` column of
 `timeseries.csv` over the averaging window [t0, t1) (blocks of `--block` s, their standard
 error), and theta* the summary's `shields_turbulent` (the paper's Shields number from the
 largest Reynolds shear stress, section IV).
@@ -13,7 +14,9 @@ largest Reynolds shear stress, section IV).
 The fit is the paper's form (figure 6 caption, Wilson 1987): qs* = a (theta* - theta_c)^{3/2}
 by least squares over the points with qs* > `--qmin`: for each theta_c on a fine grid below
 the smallest fitted theta*, a is the linear least-squares slope, and the pair with the
-smallest residual is kept. The same fit with a fixed at Wilson's 11.8 is printed too.
+smallest residual is kept. The same fit with a fixed at Wilson's 11.8 is printed too, and
+the fit weighted by the points' 1/se^2 with the standard errors of a and theta_c (the
+weighting and errors of `saltus sweep`'s `sweep_fit.csv`).
 `--late T` adds the mean over [T, t1) (default 60 s: the second half of the window), with
 its block error, and the same fits on it: the runs drift upwards over their window (the
 bed loosens slowly), so the late mean is the nearer estimate of the equilibrium rate and
@@ -71,6 +74,72 @@ def fit(theta, qs, qmin):
             "theta_c_wilson": wil, "rms_wilson": math.sqrt(rw / n)}
 
 
+def run_folders(runs, t0):
+    """(name, folder, series, nominal theta, window start) of each point under `runs`:
+    folders named `<series>_<nominal theta>`, or the points of a `saltus sweep` folder
+    (its `sweep.json`: the series is the label of the axis other than `theta`, `none`
+    written `nodrw`; each point's window starts at its scene's `stats_start` when that is
+    later than `t0`, as at the first point of a warm-started chain)."""
+    if runs == "-":
+        return []
+    manifest = os.path.join(runs, "sweep.json")
+    if not os.path.isfile(manifest):
+        out = []
+        for name in sorted(os.listdir(runs)):
+            if "_" in name:
+                tag, nominal = name.rsplit("_", 1)
+                out.append((name, os.path.join(runs, name), tag, nominal, t0))
+        return out
+    import tomllib
+    m = json.load(open(manifest))
+    labels = {a["name"]: dict(zip(map(json.dumps, a["values"]), a["labels"])) for a in m["axes"]}
+    out = []
+    for p in m["points"]:
+        folder = os.path.join(runs, p["dir"])
+        others = [labels[k][json.dumps(v)] for k, v in p["values"].items() if k != "theta"]
+        tag = "_".join("nodrw" if t == "none" else t for t in others) or "sweep"
+        start = t0
+        scene = os.path.join(folder, "scene.toml")
+        if os.path.isfile(scene):
+            lag = tomllib.load(open(scene, "rb")).get("solver", {}).get("lagrangian", {})
+            start = max(t0, float(lag.get("stats_start", t0)))
+        out.append((p["dir"], folder, tag, str(p["values"]["theta"]), start))
+    return out
+
+
+def weighted_fit(theta, qs, se, qmin):
+    """The fit of `fit` weighted by 1/se^2, with the standard errors of a and theta_c from
+    the covariance (J^T W J)^-1 scaled by the reduced chi^2 (as `saltus sweep`'s
+    `sweep_fit.csv`): over the points with qs* > qmin and a positive error."""
+    keep = (qs > qmin) & (se > 0) & np.isfinite(se)
+    th, q, w = theta[keep], qs[keep], 1.0 / se[keep] ** 2
+    n = len(th)
+    if n < 3:
+        return None
+    grid = np.linspace(0.0, th.min() - 1e-9, 40001)
+    best = None
+    for tc in grid:
+        x = (th - tc) ** 1.5
+        a = (w * x) @ q / ((w * x) @ x)
+        r = float((w * (q - a * x) ** 2).sum())
+        if best is None or r < best[2]:
+            best = (a, tc, r)
+    a, tc, chi2 = best
+    s = th - tc
+    jac = np.stack([s ** 1.5, -1.5 * a * s ** 0.5], axis=1)
+    cov = np.linalg.inv(jac.T @ (w[:, None] * jac)) * chi2 / (n - 2)
+    return {"a": a, "a_se": math.sqrt(cov[0, 0]), "theta_c": tc, "theta_c_se": math.sqrt(cov[1, 1]),
+            "n": n, "chi2_red": chi2 / (n - 2)}
+
+
+def show_weighted(label, f, qmin):
+    """Print one fit of `weighted_fit`."""
+    if f:
+        print(f"{label}, {f['n']} points with qs* > {qmin:g}, weighted by 1/se^2: "
+              f"a = {f['a']:.2f} +- {f['a_se']:.2f}, theta_c = {f['theta_c']:.4f} +- {f['theta_c_se']:.4f} "
+              f"(reduced chi^2 {f['chi2_red']:.2f})")
+
+
 def show_fit(label, f, qmin):
     """Print one fit of `fit` (nothing when there were too few points to fit)."""
     if f:
@@ -100,17 +169,14 @@ def main():
                 (float(r["nominal"]), float(r["theta_star"]), float(r["qs_star"]), float(r["stderr"]),
                  int(r["blocks"]), float(r["theta"]),
                  float(r.get("qs_star_late") or "nan"), float(r.get("stderr_late") or "nan")))
-    names = sorted(os.listdir(args.runs)) if args.runs != "-" else []
-    for name in names:
-        folder = os.path.join(args.runs, name)
-        if not os.path.isfile(os.path.join(folder, "summary.json")) or "_" not in name:
+    for name, folder, tag, nominal, t0 in run_folders(args.runs, args.t0):
+        if not os.path.isfile(os.path.join(folder, "summary.json")):
             continue
-        tag, nominal = name.rsplit("_", 1)
         s = json.load(open(os.path.join(folder, "summary.json")))
         if s.get("ending") != "end_time":
             print(f"skipped {name}: it ended with {s.get('ending')!r}, not at its end time")
             continue
-        m, e, nb = block_mean(folder, args.t0, args.t1, args.block)
+        m, e, nb = block_mean(folder, t0, args.t1, args.block)
         ml, el, _ = block_mean(folder, args.late, args.t1, args.block)
         # a run folder replaces a table's row of the same point: never one point twice
         pts = [p for p in series.get(tag, []) if p[0] != float(nominal)]
@@ -138,6 +204,9 @@ def main():
         f = fit(theta_star, np.array([p[2] for p in pts]), args.qmin)
         fits[tag] = f
         show_fit(f"fit over the {args.t0:g}-{args.t1:g} s means", f, args.qmin)
+        show_weighted(f"fit over the {args.t0:g}-{args.t1:g} s means",
+                      weighted_fit(theta_star, np.array([p[2] for p in pts]), np.array([p[3] for p in pts]),
+                                   args.qmin), args.qmin)
         late = np.array([p[6] for p in pts])
         if not np.isfinite(late).all():
             print(f"no late fit: {int((~np.isfinite(late)).sum())} point(s) without a late mean "

@@ -176,7 +176,9 @@ class SweepResult:
         files: ``sweep.csv``, ``sweep_seeds.csv`` (with a seed axis), the figure.
         fits: the 3/2-law fit of each series of the figure (one per value of the axes
             other than the swept Shields number and the seed): ``{"series", "a",
-            "a_stderr", "theta_c", "theta_c_stderr", "n", "rms", "at_bound"}``.
+            "a_stderr", "theta_c", "theta_c_stderr", "n", "rms", "at_bound", "n_stand_in"}``
+            (``n_stand_in``: points without an error of their own, weighed with the
+            largest relative error of the series' others).
         warnings: what did not fail the sweep.
         errors: per point that raised in the executor, its message.
     """

@@ -96,6 +96,7 @@ pub fn sweep_collect<'py>(
             x.set_item("n", f.n)?;
             x.set_item("rms", f.rms)?;
             x.set_item("at_bound", f.at_bound)?;
+            x.set_item("n_stand_in", f.n_stand_in)?;
             fits.append(x)?;
         }
     }

@@ -8,6 +8,12 @@
 //! chi^2 (the residual scatter, as scipy's `curve_fit` does by default), so that points
 //! without errors of their own (an Eulerian sweep, weights 1) get errors from their
 //! scatter about the law.
+//!
+//! A series where only some points carry an error (a DEM run too short for its blocking
+//! test to give one) weighs each point without one as the least certain of the others:
+//! its error is taken as its qs* times the largest relative error of the points that have
+//! one. Weighing it 1 beside weights of 1/se^2 (1e4-1e6 for DEM rates) would drop it from
+//! the fit without a word; counting it as certain would let it pull the law alone.
 
 /// A fitted 3/2 law.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -27,6 +33,9 @@ pub struct Fit {
     /// theta_c ended at the smallest fitted theta: the points rise faster than a 3/2
     /// power of any threshold below them, and the errors do not bound theta_c
     pub at_bound: bool,
+    /// points without an error of their own in a series where others have one, weighed
+    /// with the largest relative error of those (module comment)
+    pub n_stand_in: usize,
 }
 
 fn law(a: f64, c: f64, x: f64) -> f64 {
@@ -37,10 +46,30 @@ fn law(a: f64, c: f64, x: f64) -> f64 {
 /// Fit y = a (x - c)^{3/2} to the points `(x, y, sigma)` (sigma `None`: weight 1).
 /// `None` with fewer than three points or points that do not determine the law.
 pub fn fit(points: &[(f64, f64, Option<f64>)]) -> Option<Fit> {
-    let pts: Vec<(f64, f64, f64)> = points
+    let own = |s: Option<f64>| s.filter(|s| *s > 0.0 && s.is_finite());
+    let finite: Vec<(f64, f64, Option<f64>)> = points
         .iter()
+        .copied()
         .filter(|(x, y, _)| x.is_finite() && y.is_finite())
-        .map(|&(x, y, s)| (x, y, s.filter(|s| *s > 0.0 && s.is_finite()).map_or(1.0, |s| 1.0 / (s * s))))
+        .map(|(x, y, s)| (x, y, own(s)))
+        .collect();
+    // the largest relative error of the points that have one, for those that have none
+    let worst = finite
+        .iter()
+        .filter_map(|&(_, y, s)| s.map(|s| s / y.abs()))
+        .filter(|r| r.is_finite())
+        .fold(None, |m: Option<f64>, r| Some(m.map_or(r, |m| m.max(r))));
+    let mut n_stand_in = 0;
+    let pts: Vec<(f64, f64, f64)> = finite
+        .iter()
+        .map(|&(x, y, s)| {
+            let s = s.or_else(|| {
+                let stood = worst.map(|r| r * y.abs()).filter(|s| *s > 0.0 && s.is_finite());
+                n_stand_in += usize::from(stood.is_some());
+                stood
+            });
+            (x, y, s.map_or(1.0, |s| 1.0 / (s * s)))
+        })
         .collect();
     let n = pts.len();
     if n < 3 {
@@ -129,6 +158,7 @@ pub fn fit(points: &[(f64, f64, Option<f64>)]) -> Option<Fit> {
         n,
         rms,
         at_bound,
+        n_stand_in,
     })
 }
 
@@ -163,6 +193,38 @@ mod tests {
         assert!((f.a - 8.0).abs() < 3.0 * f.a_stderr, "{f:?}");
         assert!((f.theta_c - 0.047).abs() < 3.0 * f.theta_c_stderr, "{f:?}");
         assert!(f.a_stderr > 1e-3 * 8.0 && f.a_stderr < 0.05 * 8.0, "{f:?}");
+    }
+
+    /// A point without an error beside points with one weighs as the least certain of
+    /// them: the fit is the one where its error is its qs* times their largest relative
+    /// error, and it moves the law (it is not dropped as a weight of 1 among 1/se^2 would).
+    #[test]
+    fn a_point_without_an_error_weighs_as_the_least_certain_point_with_one() {
+        let xs = [0.08, 0.1, 0.15, 0.2, 0.3];
+        let rel = [0.06, 0.05, 0.03, 0.02, 0.01];
+        // the last point off the law by 20 %, so that dropping it or not shows
+        let y = |k: usize| law(10.0, 0.05, xs[k]) * if k == 4 { 1.2 } else { 1.0 + 0.01 * (k as f64 - 2.0) };
+        let with: Vec<_> = (0..5).map(|k| (xs[k], y(k), Some(rel[k] * y(k)))).collect();
+        let mut without = with.clone();
+        without[4].2 = None;
+        let stood = {
+            let mut p = with.clone();
+            p[4].2 = Some(0.06 * y(4));
+            fit(&p).unwrap()
+        };
+        let dropped = fit(&with[..4]).unwrap();
+        let f = fit(&without).unwrap();
+        assert_eq!(f.n_stand_in, 1);
+        assert_eq!(stood.n_stand_in, 0);
+        assert!((f.a - stood.a).abs() < 1e-9 * stood.a && (f.theta_c - stood.theta_c).abs() < 1e-12, "{f:?} {stood:?}");
+        assert!((f.a - dropped.a).abs() > 0.01 * dropped.a, "{f:?} {dropped:?}");
+    }
+
+    /// With no point carrying an error, every point weighs 1 and none is stood in.
+    #[test]
+    fn points_without_errors_weigh_alike() {
+        let pts: Vec<_> = [0.08, 0.1, 0.15, 0.2].iter().map(|&x| (x, law(9.0, 0.04, x) * 1.01, None)).collect();
+        assert_eq!(fit(&pts).unwrap().n_stand_in, 0);
     }
 
     #[test]

@@ -366,6 +366,13 @@ impl Report {
                     "  theta_c is at the smallest fitted value: the points rise faster than a 3/2 power above any one threshold"
                 );
             }
+            if f.n_stand_in > 0 {
+                let _ = writeln!(
+                    s,
+                    "  {} of the points have no error of their own and weigh as the least certain of the others",
+                    f.n_stand_in
+                );
+            }
         }
         s
     }

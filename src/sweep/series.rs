@@ -84,10 +84,13 @@ pub fn of(sweep: &Sweep, m: &Manifest, summaries: &[Option<Fields>]) -> Option<(
     Some((x_desc, y, series.into_iter().map(|s| s.1).collect()))
 }
 
-/// Write the fits, one row per series: `series,n,a,a_stderr,theta_c,theta_c_stderr,rms,at_bound`.
+/// Write the fits, one row per series:
+/// `series,n,a,a_stderr,theta_c,theta_c_stderr,rms,at_bound,n_stand_in`.
 pub fn write_fits(path: &Path, fits: &[(String, Fit)]) -> anyhow::Result<()> {
     let header: Vec<String> =
-        ["series", "n", "a", "a_stderr", "theta_c", "theta_c_stderr", "rms", "at_bound"].map(String::from).to_vec();
+        ["series", "n", "a", "a_stderr", "theta_c", "theta_c_stderr", "rms", "at_bound", "n_stand_in"]
+            .map(String::from)
+            .to_vec();
     let rows: Vec<Vec<String>> = fits
         .iter()
         .map(|(label, f)| {
@@ -100,6 +103,7 @@ pub fn write_fits(path: &Path, fits: &[(String, Fit)]) -> anyhow::Result<()> {
                 format!("{:?}", f.theta_c_stderr),
                 format!("{:?}", f.rms),
                 f.at_bound.to_string(),
+                f.n_stand_in.to_string(),
             ]
         })
         .collect();
