@@ -10,7 +10,15 @@
 //!   deterministic runs), so that a difference inside its bar is not resolved;
 //! * `rms_phi`, `rms_u_p`, `rms_u_f`: the RMS difference of the profile from the
 //!   reference's (the run interpolated in z onto the reference's rows, see
-//!   [`crate::differences`]) over the largest |value| of the reference profile.
+//!   [`crate::differences`]) over the largest |value| of the reference profile;
+//! * `moving_rms_phi`, `moving_rms_u_p`: the RMS differences of phi and u_p, in their
+//!   units, over the reference's rows where the grains move (phi above [`MOVING_PHI`] and
+//!   u_p above [`MOVING_U_P`] times the largest u_p where phi is): the layer that carries the transport,
+//!   without the clear fluid above it and the creeping bed below. Against a DEM run as the
+//!   reference, a second seed of that run (a variant with another `seed`) gives the
+//!   seed-to-seed scatter in the same measure: for a continuum variant, an RMS no larger
+//!   than the second seed's means a bias no larger than one seed's standard deviation
+//!   (E[(m - s1)^2] = b^2 + sd^2 against E[(s2 - s1)^2] = 2 sd^2).
 //!
 //! The cost is the run's CPU time (summary `cpu_time_s`), else its wall time.
 
@@ -33,6 +41,16 @@ pub const FIGURE: &str = "precision.png";
 
 /// Profile columns whose relative RMS difference the table gives.
 pub const PROFILES: [&str; 3] = ["phi", "u_p", "u_f"];
+
+/// Profile columns whose RMS difference over the moving layer the table gives.
+pub const MOVING: [&str; 2] = ["phi", "u_p"];
+
+/// Rows of the reference where the grains move: phi above this (no clear fluid, where a
+/// DEM's u_p is undefined)...
+pub const MOVING_PHI: f64 = 0.01;
+
+/// ...and u_p above this fraction of the largest u_p of those rows (no creeping bed).
+pub const MOVING_U_P: f64 = 0.05;
 
 /// The `[reference]` table of a compare file.
 #[derive(Clone, Debug, Default, Deserialize, PartialEq)]
@@ -71,6 +89,8 @@ pub struct Row {
     pub qs_star_error_bar: Option<f64>,
     /// relative RMS differences of [`PROFILES`], in that order
     pub rms: [Option<f64>; 3],
+    /// RMS differences of [`MOVING`] over the reference's moving layer, in their units
+    pub moving_rms: [Option<f64>; 2],
 }
 
 impl Row {
@@ -88,6 +108,7 @@ pub fn header() -> Vec<String> {
             .map(|s| s.to_string())
             .collect();
     h.extend(PROFILES.iter().map(|c| format!("rms_{c}")));
+    h.extend(MOVING.iter().map(|c| format!("moving_rms_{c}")));
     h
 }
 
@@ -106,6 +127,7 @@ pub fn rows(spec: &ReferenceSpec, runs: &[(&str, Option<&RunReport>)], data: &[&
         None if spec.data => data.to_vec(),
         None => Vec::new(),
     };
+    let moving_ref = profiles_ref.iter().find_map(|t| moving_layer(t));
     runs.iter()
         .map(|(name, report)| {
             let mut row = Row { variant: name.to_string(), ..Row::default() };
@@ -123,6 +145,11 @@ pub fn rows(spec: &ReferenceSpec, runs: &[(&str, Option<&RunReport>)], data: &[&
             for (k, c) in PROFILES.iter().enumerate() {
                 row.rms[k] = profiles_ref.iter().find_map(|t| relative_rms(&rep.profiles, t, c));
             }
+            if let Some(m) = &moving_ref {
+                for (k, c) in MOVING.iter().enumerate() {
+                    row.moving_rms[k] = differences::rms_difference(&rep.profiles, m, c).map(|(r, _)| r);
+                }
+            }
             row
         })
         .collect()
@@ -133,6 +160,25 @@ fn relative_rms(run: &Profiles, reference: &Table, column: &str) -> Option<f64> 
     let scale = reference.get(column)?.iter().filter(|v| v.is_finite()).fold(0.0f64, |m, v| m.max(v.abs()));
     let (rms, _) = differences::rms_difference(run, reference, column)?;
     (scale > 0.0).then(|| rms / scale)
+}
+
+/// The rows of `reference` where the grains move ([`MOVING_PHI`], [`MOVING_U_P`]), with its
+/// z, phi and u_p; `None` without those columns or without such a row.
+fn moving_layer(reference: &Table) -> Option<Table> {
+    let (z, phi, u_p) = (reference.get("z")?, reference.get("phi")?, reference.get("u_p")?);
+    // the largest u_p among the grains: an Eulerian reference's u_p is defined in the clear
+    // fluid too, where it can exceed the layer's
+    let top = (0..z.len()).filter(|&k| phi[k] > MOVING_PHI && u_p[k].is_finite()).fold(0.0f64, |m, k| m.max(u_p[k]));
+    let keep: Vec<usize> =
+        (0..z.len()).filter(|&k| phi[k] > MOVING_PHI && u_p[k] > MOVING_U_P * top && top > 0.0).collect();
+    if keep.is_empty() {
+        return None;
+    }
+    let mut t = Table::default();
+    for (name, col) in [("z", z), ("phi", phi), ("u_p", u_p)] {
+        t.push(name, keep.iter().map(|&k| col[k]).collect());
+    }
+    Some(t)
 }
 
 fn to_table(p: &Profiles) -> Table {
@@ -158,6 +204,7 @@ pub fn cells(r: &Row, precise: bool) -> Vec<String> {
         c.push(cell(v, precise));
     }
     c.extend(r.rms.iter().map(|v| cell(*v, precise)));
+    c.extend(r.moving_rms.iter().map(|v| cell(*v, precise)));
     c
 }
 
@@ -313,6 +360,39 @@ mod tests {
         assert_eq!(rows[1].rms[0], Some(0.0));
         // a variant without a run has an empty row
         assert_eq!(rows[2], Row { variant: "failed".into(), ..Row::default() });
+    }
+
+    /// The moving-layer RMS sees only the rows where the reference's grains move: a run
+    /// that differs in the clear fluid (phi <= 0.01) and in the creeping bed (u_p <= 5 %
+    /// of the largest) has none, one that differs inside the layer has its difference.
+    #[test]
+    fn the_moving_layer_leaves_out_the_clear_fluid_and_the_creeping_bed() {
+        let profiles = |phi: Vec<f64>, u_p: Vec<f64>| {
+            let mut p = Profiles::default();
+            p.push("z", vec![0.0, 1.0, 2.0, 3.0, 4.0]);
+            p.push("phi", phi);
+            p.push("u_p", u_p);
+            RunReport {
+                summary: Summary { qs_star: Some(1.0), ..Summary::default() },
+                profiles: p,
+                text: String::new(),
+            }
+        };
+        // bed (creeping), two moving rows, clear fluid
+        let dem = profiles(vec![0.6, 0.6, 0.4, 0.1, 0.0], vec![0.001, 0.04, 0.5, 1.0, 2.0]);
+        let outside = profiles(vec![0.55, 0.6, 0.4, 0.1, 0.05], vec![0.03, 0.04, 0.5, 1.0, 0.0]);
+        let inside = profiles(vec![0.6, 0.6, 0.43, 0.1, 0.0], vec![0.001, 0.04, 0.5, 0.9, 2.0]);
+        let spec = ReferenceSpec { variant: Some("dem".into()), ..ReferenceSpec::default() };
+        let rows = rows(&spec, &[("dem", Some(&dem)), ("outside", Some(&outside)), ("inside", Some(&inside))], &[]);
+        // the largest u_p among the grains is 1.0 (the clear fluid's 2.0 is not counted):
+        // rows 2 and 3 move, row 1 (0.04) creeps
+        assert_eq!(rows[0].moving_rms, [Some(0.0), Some(0.0)]);
+        assert!(rows[1].rms[0].unwrap() > 0.0 && rows[1].rms[1].unwrap() > 0.0, "{:?}", rows[1]);
+        assert_eq!(rows[1].moving_rms, [Some(0.0), Some(0.0)]);
+        // rows 2 and 3 move: differences 0.03 and 0 in phi, 0 and 0.1 in u_p
+        let m = rows[2].moving_rms;
+        assert!((m[0].unwrap() - 0.03 / 2f64.sqrt()).abs() < 1e-12, "{m:?}");
+        assert!((m[1].unwrap() - 0.1 / 2f64.sqrt()).abs() < 1e-12, "{m:?}");
     }
 
     #[test]
