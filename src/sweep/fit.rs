@@ -43,7 +43,9 @@ fn law(a: f64, c: f64, x: f64) -> f64 {
     a * s * s.sqrt()
 }
 
-/// Fit y = a (x - c)^{3/2} to the points `(x, y, sigma)` (sigma `None`: weight 1).
+/// Fit y = a (x - c)^{3/2} to the points `(x, y, sigma)`, weighted by 1/sigma^2. A point
+/// with `None` (or a non-finite or non-positive sigma) takes the largest relative error of
+/// the points that have one (module comment); when none has one, every point weighs 1.
 /// `None` with fewer than three points or points that do not determine the law.
 pub fn fit(points: &[(f64, f64, Option<f64>)]) -> Option<Fit> {
     let own = |s: Option<f64>| s.filter(|s| *s > 0.0 && s.is_finite());
