@@ -16,6 +16,8 @@
 //! [reference]                     # optional: work against precision (crate::precision)
 //! variant = "as is"               # or data = true (the base scene's reference data)
 //! # qs_star = 2.44                # and/or a published qs*, with qs_star_stderr
+//! # smooth = 1.0                  # with a variant: Fry's eq-11 Gaussian of h_g = 1 d on the
+//! # align = true                  # moving-layer RMS, and each profile from its bed surface
 //! ```
 
 use std::collections::HashSet;
@@ -202,6 +204,21 @@ fn check_reference(path: &Path, r: &ReferenceSpec, variants: &[Variant]) -> anyh
     }
     if r.qs_star_stderr.is_some() && r.qs_star.is_none() {
         return Err(key_error(path, "reference.qs_star_stderr", "an error of a qs_star the table does not give"));
+    }
+    if let Some(h) = r.smooth.filter(|h| !(h.is_finite() && *h > 0.0 && *h <= precision::MAX_SMOOTH)) {
+        return Err(key_error(
+            path,
+            "reference.smooth",
+            format!("{h}: h_g in grain diameters, a finite number > 0 and <= {}", precision::MAX_SMOOTH),
+        ));
+    }
+    if (r.smooth.is_some() || r.align) && r.variant.is_none() {
+        let key = if r.smooth.is_some() { "reference.smooth" } else { "reference.align" };
+        return Err(key_error(
+            path,
+            key,
+            "smooths or aligns the profiles of a reference variant: give variant = \"<name>\"",
+        ));
     }
     Ok(())
 }
@@ -447,7 +464,7 @@ pub fn run(cmp: &Comparison, out: &Path, progress: bool) -> anyhow::Result<Compa
                 .warnings
                 .push(format!("{}: reference.data: the base scene has no reference data", cmp.file.display()));
         }
-        report.precision = precision::rows(spec, &runs, &tables);
+        report.precision = precision::rows(spec, &runs, &tables, base.particles.diameter);
         report.precision_table = Some(precision::write(&report.precision, out)?);
         let png = out.join(precision::FIGURE);
         match precision::draw(&format!("{}: work against precision", cmp.meta.name), &report.precision, &png) {

@@ -216,6 +216,12 @@ fn a_bad_reference_is_refused_naming_the_key() {
         ("[reference]\nqs_star = -1.0\n", "reference.qs_star"),
         ("[reference]\ndata = true\nqs_star_stderr = 0.1\n", "reference.qs_star_stderr"),
         ("[reference]\nvariants = \"a\"\n", "variants"),
+        ("[reference]\nvariant = \"a\"\nsmooth = nan\n", "reference.smooth"),
+        ("[reference]\nvariant = \"a\"\nsmooth = 0.0\n", "reference.smooth"),
+        ("[reference]\nvariant = \"a\"\nsmooth = 1e308\n", "reference.smooth"),
+        ("[reference]\nvariant = \"a\"\nsmooth = \"one\"\n", "smooth"),
+        ("[reference]\ndata = true\nsmooth = 1.0\n", "reference.smooth"),
+        ("[reference]\nqs_star = 2.0\nalign = true\n", "reference.align"),
     ];
     for (text, key) in cases {
         let p = compare_file(&d, &format!("{text}[[variant]]\nname = \"a\"\n"));

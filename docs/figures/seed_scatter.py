@@ -1,7 +1,7 @@
 """Profiles of continuum runs against the seed-to-seed scatter of DEM runs of one scene.
 
     python3 docs/figures/seed_scatter.py --dem DEM_SEED1 DEM_SEED2 [...] --run NAME=DIR [...]
-        [--phi-min 0.01] [--moving 0.05]
+        [--phi-min 0.01] [--moving 0.05] [--smooth H] [--align]
 
 Each folder is a `saltus run` output (its `profiles.csv` and `summary.json`). The DEM
 seeds are taken on the first seed's cells (each DEM fits its column to its own deposit, so
@@ -24,6 +24,15 @@ Then the same differences against the first seed alone, over its own moving cell
 measure of `saltus compare`'s `precision.csv` (`moving_rms_phi`, `moving_rms_u_p`), where
 a continuum run no further from that seed than the other seeds are has a bias no larger
 than one seed's standard deviation.
+
+`--smooth H` first weights every profile (DEM seeds and continuum runs alike) with Fry et
+al. 2024's Gaussian of h_g = H grain diameters (their eq 11, normalised over the column; as `saltus compare` does with `[reference] smooth`):
+phi and the flux phi u_p are smoothed, u_p is their ratio. A DEM bed in a small cell
+stacks its grains in layers about a diameter apart, a structure a continuum model has no
+term for; the smoothing takes it out of both before they are compared. `--align` takes
+every profile against the distance above its own bed surface, the level below which 1 %
+of its flux flows (as `saltus compare` does for its RMS columns), instead of at the same
+height.
 Needs numpy.
 """
 
@@ -45,17 +54,47 @@ def summary(folder):
     return json.load(open(os.path.join(folder, "summary.json")))
 
 
+def diameter(folder):
+    import tomllib
+    with open(os.path.join(folder, "scene.toml"), "rb") as f:
+        return float(tomllib.load(f)["particles"]["diameter"])
+
+
+def prepared(p, smooth_m, align):
+    """phi and u_p of one run, smoothed with Fry's eq-11 Gaussian of width smooth_m (m) and
+    taken against the distance above the bed surface if align."""
+    z, phi = p["z"], np.nan_to_num(p["phi"])
+    flux = phi * np.nan_to_num(p["u_p"])
+    if smooth_m > 0:
+        w = np.exp(-(((z[:, None] - z[None, :]) / smooth_m) ** 2)) * np.gradient(z)[None, :]
+        w /= w.sum(axis=1, keepdims=True)
+        phi, flux = w @ phi, w @ flux
+    # where no grain is (after smoothing), the run's own u_p: a continuum's is defined there
+    u_p = np.where(phi > 1e-9, flux / np.maximum(phi, 1e-9), np.nan_to_num(p["u_p"]))
+    shift = 0.0
+    if align:
+        dz = np.gradient(z)
+        q = np.concatenate([[0.0], np.cumsum(np.clip(flux, 0.0, None) * dz)])
+        faces = np.concatenate([[z[0] - 0.5 * dz[0]], z + 0.5 * dz])
+        shift = float(np.interp(0.01 * q[-1], q, faces))
+    return {"z": z - shift, "phi": phi, "u_p": u_p}
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--dem", nargs="+", required=True)
     ap.add_argument("--run", action="append", default=[], help="NAME=DIR of a continuum run")
     ap.add_argument("--phi-min", type=float, default=0.01)
     ap.add_argument("--moving", type=float, default=0.05)
+    ap.add_argument("--smooth", type=float, default=0.0, help="Gaussian h_g in grain diameters (Fry eq 11)")
+    ap.add_argument("--align", action="store_true", help="against the distance above each bed surface")
     args = ap.parse_args()
     if len(args.dem) < 2:
         ap.error("two DEM seeds at least: the scatter is measured between them")
 
-    seeds = [profiles(d) for d in args.dem]
+    h = args.smooth * diameter(args.dem[0])
+    load = lambda folder: prepared(profiles(folder), h, args.align)  # noqa: E731
+    seeds = [load(d) for d in args.dem]
     z = seeds[0]["z"]
     # a DEM fits its column to its own deposit: the other seeds onto the first one's cells
     top = min(s["z"].max() for s in seeds)
@@ -90,7 +129,7 @@ def main():
               f"{rms(s['u_p'] - mean['u_p']):.4f} |")
     for spec in args.run:
         name, _, folder = spec.partition("=")
-        p = profiles(folder)
+        p = load(folder)
         v = summary(folder).get("qs_star")
         diff = {c: np.interp(z, p["z"], p[c]) - mean[c] for c in ("phi", "u_p")}
         outside = (z < p["z"].min()) | (z > p["z"].max())
@@ -107,7 +146,7 @@ def main():
     print(f"\nagainst {args.dem[0]} alone, over its {int(mask.sum())} moving rows (precision.csv's moving_rms_phi, "
           f"moving_rms_u_p):")
     others = [(d, s) for d, s in zip(args.dem[1:], seeds[1:])]
-    others += [(spec.partition("=")[0], profiles(spec.partition("=")[2])) for spec in args.run]
+    others += [(spec.partition("=")[0], load(spec.partition("=")[2])) for spec in args.run]
     for name, p in others:
         d = {c: np.interp(z[mask], p["z"], p[c]) - ref[c][mask] for c in ("phi", "u_p")}
         print(f"| {name} | {math.sqrt(float(np.mean(d['phi'] ** 2))):.4f} | {math.sqrt(float(np.mean(d['u_p'] ** 2))):.4f} |")
