@@ -526,6 +526,11 @@ mod tests {
         assert_eq!(rows[0].rms[1], None);
     }
 
+    /// Centres of `n` even cells over `height`.
+    fn centres(n: usize, height: f64) -> Vec<f64> {
+        (0..n).map(|k| (k as f64 + 0.5) * height / n as f64).collect()
+    }
+
     fn column(z: &[f64], phi: Vec<f64>, u_p: Vec<f64>) -> RunReport {
         let mut p = Profiles::default();
         p.push("z", z.to_vec());
@@ -535,15 +540,15 @@ mod tests {
     }
 
     /// Grains stacked in layers one diameter apart (phi 0.3 +- 0.1 sin(2 pi z / d) over the
-    /// middle of the column, tapered to an even 0.3 towards its ends) against a continuum's even 0.3: the
-    /// layers are the whole difference, RMS 0.1 / sqrt 2 where they are full. Fry's Gaussian
+    /// middle of the column, tapered to an even 0.3 towards its ends) against a continuum's
+    /// even 0.3: the layers are the whole difference, RMS 0.1 / sqrt 2 where they are full. Fry's Gaussian
     /// of h_g = d damps a wave of length d by exp(-pi^2) = 5.2e-5, so with `smooth = 1` the
     /// difference all but vanishes (what is left comes from the taper).
     #[test]
     fn smoothing_over_a_diameter_takes_out_the_grain_layers() {
         let d = 1e-3;
         let n = 800;
-        let z: Vec<f64> = (0..n).map(|k| (k as f64 + 0.5) * 20.0 * d / n as f64).collect();
+        let z = centres(n, 20.0 * d);
         let taper = |z: f64| {
             let x = ((z / d - 4.0) / 4.0).clamp(0.0, 1.0).min(((16.0 - z / d) / 4.0).clamp(0.0, 1.0));
             (0.5 - 0.5 * (std::f64::consts::PI * x).cos()).powi(2)
@@ -573,7 +578,7 @@ mod tests {
     fn aligned_profiles_do_not_count_a_higher_bed_as_a_difference() {
         let d = 1e-3;
         let n = 400;
-        let z: Vec<f64> = (0..n).map(|k| (k as f64 + 0.5) * 20.0 * d / n as f64).collect();
+        let z = centres(n, 20.0 * d);
         let layer = |shift: f64| {
             let phi: Vec<f64> = z.iter().map(|&z| 0.3 * (1.0 - ((z - 8.0 * d - shift) / d).tanh())).collect();
             let u: Vec<f64> = z.iter().map(|&z| 0.05 * (1.0 + ((z - 8.0 * d - shift) / d).tanh())).collect();
