@@ -44,6 +44,10 @@ use crate::differences;
 use crate::plot::register_font;
 use crate::table::Table;
 
+mod moving;
+
+pub use moving::{BED_FLUX, MAX_SMOOTH, MOVING, MOVING_PHI, MOVING_U_P};
+
 /// File names written beside the comparison table.
 pub const TABLE: &str = "precision.csv";
 /// See [`TABLE`].
@@ -51,16 +55,6 @@ pub const FIGURE: &str = "precision.png";
 
 /// Profile columns whose relative RMS difference the table gives.
 pub const PROFILES: [&str; 3] = ["phi", "u_p", "u_f"];
-
-/// Profile columns whose RMS difference over the moving layer the table gives.
-pub const MOVING: [&str; 2] = ["phi", "u_p"];
-
-/// Rows of the reference where the grains move: phi above this (no clear fluid, where a
-/// DEM's u_p is undefined)...
-pub const MOVING_PHI: f64 = 0.01;
-
-/// ...and u_p above this fraction of the largest u_p of those rows (no creeping bed).
-pub const MOVING_U_P: f64 = 0.05;
 
 /// The `[reference]` table of a compare file.
 #[derive(Clone, Debug, Default, Deserialize, PartialEq)]
@@ -87,15 +81,6 @@ pub struct ReferenceSpec {
     #[serde(default)]
     pub align: bool,
 }
-
-/// Largest `smooth` (grain diameters): beyond it the Gaussian spans any bed of the scenes.
-pub const MAX_SMOOTH: f64 = 100.0;
-
-/// Reach of the smoothing Gaussian, in h_g: exp(-5^2) = 1.4e-11.
-const GAUSS_REACH: f64 = 5.0;
-
-/// Fraction of a profile's flux that flows below its bed surface (`align`).
-pub const BED_FLUX: f64 = 0.01;
 
 /// One row of the table.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -155,17 +140,11 @@ pub fn rows(spec: &ReferenceSpec, runs: &[(&str, Option<&RunReport>)], data: &[&
         None => Vec::new(),
     };
     let h_g = spec.smooth.unwrap_or(0.0) * diameter;
-    let prepare = |p: &Profiles| {
-        if h_g > 0.0 || spec.align {
-            moving_profiles(p, h_g, spec.align)
-        } else {
-            Some(p.clone())
-        }
-    };
+    let prepare = |p| moving::shaped(p, h_g, spec.align);
     // smoothing and alignment apply to a reference run, whose profiles are on its own cells
     let moving_ref = match (reference, h_g > 0.0 || spec.align) {
-        (Some(r), true) => prepare(&r.profiles).and_then(|p| moving_layer(&to_table(&p))),
-        _ => profiles_ref.iter().find_map(|t| moving_layer(t)),
+        (Some(r), true) => prepare(&r.profiles).and_then(|p| moving::layer(&to_table(&p))),
+        _ => profiles_ref.iter().find_map(|t| moving::layer(t)),
     };
     runs.iter()
         .map(|(name, report)| {
@@ -199,115 +178,6 @@ fn relative_rms(run: &Profiles, reference: &Table, column: &str) -> Option<f64> 
     let scale = reference.get(column)?.iter().filter(|v| v.is_finite()).fold(0.0f64, |m, v| m.max(v.abs()));
     let (rms, _) = differences::rms_difference(run, reference, column)?;
     (scale > 0.0).then(|| rms / scale)
-}
-
-/// The rows of `reference` where the grains move ([`MOVING_PHI`], [`MOVING_U_P`]), with its
-/// z, phi and u_p; `None` without those columns or without such a row.
-fn moving_layer(reference: &Table) -> Option<Table> {
-    let (z, phi, u_p) = (reference.get("z")?, reference.get("phi")?, reference.get("u_p")?);
-    // the largest u_p among the grains: an Eulerian reference's u_p is defined in the clear
-    // fluid too, where it can exceed the layer's
-    let top = (0..z.len()).filter(|&k| phi[k] > MOVING_PHI && u_p[k].is_finite()).fold(0.0f64, |m, k| m.max(u_p[k]));
-    let keep: Vec<usize> =
-        (0..z.len()).filter(|&k| phi[k] > MOVING_PHI && u_p[k] > MOVING_U_P * top && top > 0.0).collect();
-    if keep.is_empty() {
-        return None;
-    }
-    let mut t = Table::default();
-    for (name, col) in [("z", z), ("phi", phi), ("u_p", u_p)] {
-        t.push(name, keep.iter().map(|&k| col[k]).collect());
-    }
-    Some(t)
-}
-
-/// z, phi and u_p of `p` for the moving-layer RMS: phi and the flux phi u_p weighted with
-/// Fry et al. 2024's eq-11 Gaussian of width `h_g` (m; none when 0), normalised over the
-/// column and by the cells' widths, u_p their ratio (the run's own where no grain is); z taken from the
-/// bed surface (the level below which [`BED_FLUX`] of the flux flows) when `align`. `None`
-/// without z, phi and u_p, or, when aligned, without a flux.
-fn moving_profiles(p: &Profiles, h_g: f64, align: bool) -> Option<Profiles> {
-    let (z, phi, u_p) = (p.get("z")?, p.get("phi")?, p.get("u_p")?);
-    let n = z.len();
-    if n == 0 || phi.len() != n || u_p.len() != n {
-        return None;
-    }
-    let finite = |v: f64| if v.is_finite() { v } else { 0.0 };
-    let dz = cell_widths(z);
-    let mut phi_s: Vec<f64> = phi.iter().map(|&v| finite(v)).collect();
-    let mut flux: Vec<f64> = (0..n).map(|k| phi_s[k] * finite(u_p[k])).collect();
-    if h_g > 0.0 {
-        let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
-        // beyond GAUSS_REACH h_g a weight is below 1e-10 of the centre's: the sum over the
-        // cells within reach keeps a column of many cells linear in its length
-        let sorted = z.windows(2).all(|w| w[0] <= w[1]);
-        for k in 0..n {
-            let (lo, hi) = if sorted {
-                (
-                    z.partition_point(|&v| v < z[k] - GAUSS_REACH * h_g),
-                    z.partition_point(|&v| v <= z[k] + GAUSS_REACH * h_g),
-                )
-            } else {
-                (0, n)
-            };
-            let (mut w_sum, mut pa, mut fb) = (0.0, 0.0, 0.0);
-            for j in lo..hi {
-                let w = (-((z[k] - z[j]) / h_g).powi(2)).exp() * dz[j];
-                w_sum += w;
-                pa += w * phi_s[j];
-                fb += w * flux[j];
-            }
-            if w_sum > 0.0 {
-                a[k] = pa / w_sum;
-                b[k] = fb / w_sum;
-            }
-        }
-        phi_s = a;
-        flux = b;
-    }
-    // where no grain is (after smoothing), the run's own u_p: a continuum's is defined there
-    let u: Vec<f64> = (0..n).map(|k| if phi_s[k] > 1e-9 { flux[k] / phi_s[k] } else { finite(u_p[k]) }).collect();
-    let shift = if align { bed_surface(z, &dz, &flux)? } else { 0.0 };
-    let mut out = Profiles::default();
-    out.push("z", z.iter().map(|v| v - shift).collect());
-    out.push("phi", phi_s);
-    out.push("u_p", u);
-    Some(out)
-}
-
-/// Widths of the cells whose centres are `z` (each half the distance to its neighbours on
-/// either side; the end cells mirror their one neighbour).
-fn cell_widths(z: &[f64]) -> Vec<f64> {
-    let n = z.len();
-    (0..n)
-        .map(|k| match (k.checked_sub(1).map(|i| z[i]), z.get(k + 1)) {
-            (Some(lo), Some(hi)) => 0.5 * (hi - lo),
-            (None, Some(hi)) => hi - z[k],
-            (Some(lo), None) => z[k] - lo,
-            (None, None) => 0.0,
-        })
-        .map(|w| if w.is_finite() && w > 0.0 { w } else { 0.0 })
-        .collect()
-}
-
-/// The level below which [`BED_FLUX`] of the (positive) flux flows, linear between the
-/// cells' top faces; `None` without a positive flux.
-fn bed_surface(z: &[f64], dz: &[f64], flux: &[f64]) -> Option<f64> {
-    let total: f64 = flux.iter().zip(dz).map(|(f, w)| f.max(0.0) * w).sum();
-    if !(total > 0.0 && total.is_finite()) {
-        return None;
-    }
-    let target = BED_FLUX * total;
-    let (mut below, mut face) = (0.0, z[0] - 0.5 * dz[0]);
-    for k in 0..z.len() {
-        let add = flux[k].max(0.0) * dz[k];
-        let top = z[k] + 0.5 * dz[k];
-        if below + add >= target {
-            return Some(face + (top - face) * (target - below) / add);
-        }
-        below += add;
-        face = top;
-    }
-    Some(face)
 }
 
 fn to_table(p: &Profiles) -> Table {
@@ -491,40 +361,6 @@ mod tests {
         assert_eq!(rows[2], Row { variant: "failed".into(), ..Row::default() });
     }
 
-    /// The moving-layer RMS sees only the rows where the reference's grains move: a run
-    /// that differs in the clear fluid (phi <= 0.01) and in the creeping bed (u_p <= 5 %
-    /// of the largest) has none, one that differs inside the layer has its difference.
-    #[test]
-    fn the_moving_layer_leaves_out_the_clear_fluid_and_the_creeping_bed() {
-        let profiles = |phi: Vec<f64>, u_p: Vec<f64>| {
-            let mut p = Profiles::default();
-            p.push("z", vec![0.0, 1.0, 2.0, 3.0, 4.0]);
-            p.push("phi", phi);
-            p.push("u_p", u_p);
-            RunReport {
-                summary: Summary { qs_star: Some(1.0), ..Summary::default() },
-                profiles: p,
-                text: String::new(),
-            }
-        };
-        // bed (creeping), two moving rows, clear fluid
-        let dem = profiles(vec![0.6, 0.6, 0.4, 0.1, 0.0], vec![0.001, 0.04, 0.5, 1.0, 2.0]);
-        let outside = profiles(vec![0.55, 0.6, 0.4, 0.1, 0.05], vec![0.03, 0.04, 0.5, 1.0, 0.0]);
-        let inside = profiles(vec![0.6, 0.6, 0.43, 0.1, 0.0], vec![0.001, 0.04, 0.5, 0.9, 2.0]);
-        let spec = ReferenceSpec { variant: Some("dem".into()), ..ReferenceSpec::default() };
-        let rows =
-            rows(&spec, &[("dem", Some(&dem)), ("outside", Some(&outside)), ("inside", Some(&inside))], &[], 1.0);
-        // the largest u_p among the grains is 1.0 (the clear fluid's 2.0 is not counted):
-        // rows 2 and 3 move, row 1 (0.04) creeps
-        assert_eq!(rows[0].moving_rms, [Some(0.0), Some(0.0)]);
-        assert!(rows[1].rms[0].unwrap() > 0.0 && rows[1].rms[1].unwrap() > 0.0, "{:?}", rows[1]);
-        assert_eq!(rows[1].moving_rms, [Some(0.0), Some(0.0)]);
-        // rows 2 and 3 move: differences 0.03 and 0 in phi, 0 and 0.1 in u_p
-        let m = rows[2].moving_rms;
-        assert!((m[0].unwrap() - 0.03 / 2f64.sqrt()).abs() < 1e-12, "{m:?}");
-        assert!((m[1].unwrap() - 0.1 / 2f64.sqrt()).abs() < 1e-12, "{m:?}");
-    }
-
     #[test]
     fn errors_against_a_published_rate_and_the_data() {
         let run = report(1.5, None, 1.0, vec![0.6, 0.3, 0.0]);
@@ -538,90 +374,5 @@ mod tests {
         // the run interpolates to the data exactly (linear phi)
         assert!(rows[0].rms[0].unwrap() < 1e-15);
         assert_eq!(rows[0].rms[1], None);
-    }
-
-    /// Centres of `n` even cells over `height`.
-    fn centres(n: usize, height: f64) -> Vec<f64> {
-        (0..n).map(|k| (k as f64 + 0.5) * height / n as f64).collect()
-    }
-
-    fn column(z: &[f64], phi: Vec<f64>, u_p: Vec<f64>) -> RunReport {
-        let mut p = Profiles::default();
-        p.push("z", z.to_vec());
-        p.push("phi", phi);
-        p.push("u_p", u_p);
-        RunReport { summary: Summary { qs_star: Some(1.0), ..Summary::default() }, profiles: p, text: String::new() }
-    }
-
-    /// Grains stacked in layers one diameter apart (phi 0.3 +- 0.1 sin(2 pi z / d) over the
-    /// middle of the column, tapered to an even 0.3 towards its ends) against a continuum's
-    /// even 0.3: the layers are the whole difference, RMS 0.1 / sqrt 2 where they are full. Fry's Gaussian
-    /// of h_g = d damps a wave of length d by exp(-pi^2) = 5.2e-5, so with `smooth = 1` the
-    /// difference all but vanishes (what is left comes from the taper).
-    #[test]
-    fn smoothing_over_a_diameter_takes_out_the_grain_layers() {
-        let d = 1e-3;
-        let n = 800;
-        let z = centres(n, 20.0 * d);
-        let taper = |z: f64| {
-            let x = ((z / d - 4.0) / 4.0).clamp(0.0, 1.0).min(((16.0 - z / d) / 4.0).clamp(0.0, 1.0));
-            (0.5 - 0.5 * (std::f64::consts::PI * x).cos()).powi(2)
-        };
-        let layered: Vec<f64> =
-            z.iter().map(|&z| 0.3 + 0.1 * taper(z) * (2.0 * std::f64::consts::PI * z / d).sin()).collect();
-        let dem = column(&z, layered, vec![1.0; n]);
-        let even = column(&z, vec![0.3; n], vec![1.0; n]);
-        let runs = [("dem", Some(&dem)), ("continuum", Some(&even))];
-        let plain = ReferenceSpec { variant: Some("dem".into()), ..ReferenceSpec::default() };
-        let raw = rows(&plain, &runs, &[], d)[1].moving_rms[0].unwrap();
-        // the layers are full over 4 d of the 20 d, rise over 4 d on either side, and are
-        // absent from the 4 d at each end
-        assert!(raw > 0.03 && raw < 0.1 / 2f64.sqrt(), "{raw}");
-        let smoothed = ReferenceSpec { smooth: Some(1.0), ..plain };
-        let s = rows(&smoothed, &runs, &[], d)[1].moving_rms[0].unwrap();
-        // the taper's own rise leaks a little through the Gaussian: below 1 % of the layers
-        assert!(s < 1e-2 * raw, "{s} against {raw}");
-        // the layers are not in u_p: its difference stays zero either way
-        assert!(rows(&smoothed, &runs, &[], d)[1].moving_rms[1].unwrap() < 1e-12);
-    }
-
-    /// The same moving layer standing 0.7 d higher (a looser deposit): at the same height
-    /// it differs by a large part of phi, against the distance above each bed surface it
-    /// does not.
-    #[test]
-    fn aligned_profiles_do_not_count_a_higher_bed_as_a_difference() {
-        let d = 1e-3;
-        let n = 400;
-        let z = centres(n, 20.0 * d);
-        let layer = |shift: f64| {
-            let phi: Vec<f64> = z.iter().map(|&z| 0.3 * (1.0 - ((z - 8.0 * d - shift) / d).tanh())).collect();
-            let u: Vec<f64> = z.iter().map(|&z| 0.05 * (1.0 + ((z - 8.0 * d - shift) / d).tanh())).collect();
-            column(&z, phi, u)
-        };
-        let (dem, higher) = (layer(0.0), layer(0.7 * d));
-        let runs = [("dem", Some(&dem)), ("higher", Some(&higher))];
-        let plain = ReferenceSpec { variant: Some("dem".into()), ..ReferenceSpec::default() };
-        let at_height = rows(&plain, &runs, &[], d)[1].moving_rms;
-        let aligned = ReferenceSpec { align: true, ..plain };
-        let from_bed = rows(&aligned, &runs, &[], d)[1].moving_rms;
-        assert!(at_height[0].unwrap() > 0.1, "{at_height:?}");
-        // interpolation between cells of d/20 only
-        assert!(from_bed[0].unwrap() < 1e-3 && from_bed[1].unwrap() < 1e-4, "{from_bed:?}");
-    }
-
-    /// An even flux over cells of 0.1: 1 % of it flows below 1 % of the column's height.
-    #[test]
-    fn the_bed_surface_is_where_one_percent_of_the_flux_flows_below() {
-        let z: Vec<f64> = (0..10).map(|k| 0.05 + 0.1 * k as f64).collect();
-        let dz = cell_widths(&z);
-        assert!(dz.iter().all(|w| (w - 0.1).abs() < 1e-12), "{dz:?}");
-        let level = bed_surface(&z, &dz, &[2.0; 10]).unwrap();
-        assert!((level - 0.01).abs() < 1e-12, "{level}");
-        // flux only in the top three cells: 1 % of it is 0.03 of the way into the eighth cell
-        let mut f = [0.0; 10];
-        f[7..].fill(1.0);
-        assert!((bed_surface(&z, &dz, &f).unwrap() - 0.703).abs() < 1e-12);
-        assert_eq!(bed_surface(&z, &dz, &[0.0; 10]), None);
-        assert_eq!(bed_surface(&z, &dz, &[f64::NAN; 10]), None);
     }
 }
