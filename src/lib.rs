@@ -35,6 +35,7 @@ pub fn describe(e: &anyhow::Error) -> String {
     saltus_core::error::clip_words(&s).into_owned()
 }
 
+pub mod calibrate;
 pub mod check;
 pub mod cli;
 pub mod compare;

@@ -97,6 +97,24 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Fit closure constants jointly against a reference (seeds of a DEM run, run folders
+    /// or the base scene's data), with their errors, correlations and profile likelihoods:
+    /// calibrated.toml (for `saltus run --closures`), calibration.csv (every model run),
+    /// calibration.json and figures. See docs/studies.md.
+    Calibrate {
+        /// calibrate file: `base` scene, `[[parameter]]` tables with `key` and `bounds`,
+        /// `[reference]`, `[misfit]`, `[optimiser]`
+        file: PathBuf,
+        /// override one key of every model run, after the file's own `set` (repeatable)
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// output folder (default: out/<meta.name>)
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// check the file, its base scene, keys and reference, and run nothing
+        #[arg(long)]
+        check: bool,
+    },
     /// Run a study: a base scene over named axes of scene keys (their product or zip), the
     /// points in parallel, one folder each; a manifest (sweep.json), a table of the axes'
     /// values and every summary field (sweep.csv), and qs* against the swept number with
@@ -393,6 +411,30 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     file.display(),
                     report.runs.len()
                 );
+            }
+        }
+        Command::Calibrate { file, set, out, check } => {
+            let cal = saltus::calibrate::load(&file, &set)?;
+            if check {
+                let problem = saltus::calibrate::Problem::new(cal)?;
+                let r = &problem.reference;
+                outln!(
+                    "{}: {} free constants, {} reference terms over {} seed(s); ok",
+                    file.display(),
+                    problem.start.len(),
+                    r.profiles.len() + usize::from(r.rate.is_some()),
+                    r.seeds
+                );
+                return Ok(());
+            }
+            let out = out.unwrap_or_else(|| saltus::calibrate::default_out(&cal));
+            let report = saltus::calibrate::run(cal, &out)?;
+            for w in &report.warnings {
+                saltus::errln!("warning: {w}");
+            }
+            out!("{}", report.text());
+            for f in &report.files {
+                outln!("{}", f.display());
             }
         }
         Command::Sweep { file, set, out, resume, jobs, emit, collect, quiet } => {

@@ -46,6 +46,7 @@ use crate::table::Table;
 
 mod moving;
 
+pub(crate) use moving::{moving_rows, prepared};
 pub use moving::{BED_FLUX, MAX_SMOOTH, MOVING, MOVING_PHI, MOVING_U_P};
 
 /// File names written beside the comparison table.

@@ -30,15 +30,20 @@ const GAUSS_REACH: f64 = 5.0;
 /// Fraction of a profile's flux that flows below its bed surface (`align`).
 pub const BED_FLUX: f64 = 0.01;
 
-/// The rows of `reference` where the grains move ([`MOVING_PHI`], [`MOVING_U_P`]), with its
-/// z, phi and u_p; `None` without those columns or without such a row.
+/// Indices of the rows where the grains move: phi above [`MOVING_PHI`] and u_p above
+/// [`MOVING_U_P`] of the largest u_p among the grains (an Eulerian reference's u_p is
+/// defined in the clear fluid too, where it can exceed the layer's).
+pub(crate) fn moving_rows(z: &[f64], phi: &[f64], u_p: &[f64]) -> Vec<usize> {
+    let n = z.len().min(phi.len()).min(u_p.len());
+    let top = (0..n).filter(|&k| phi[k] > MOVING_PHI && u_p[k].is_finite()).fold(0.0f64, |m, k| m.max(u_p[k]));
+    (0..n).filter(|&k| phi[k] > MOVING_PHI && u_p[k] > MOVING_U_P * top && top > 0.0).collect()
+}
+
+/// The rows of `reference` where the grains move ([`moving_rows`]), with its z, phi and
+/// u_p; `None` without those columns or without such a row.
 pub(super) fn layer(reference: &Table) -> Option<Table> {
     let (z, phi, u_p) = (reference.get("z")?, reference.get("phi")?, reference.get("u_p")?);
-    // the largest u_p among the grains: an Eulerian reference's u_p is defined in the clear
-    // fluid too, where it can exceed the layer's
-    let top = (0..z.len()).filter(|&k| phi[k] > MOVING_PHI && u_p[k].is_finite()).fold(0.0f64, |m, k| m.max(u_p[k]));
-    let keep: Vec<usize> =
-        (0..z.len()).filter(|&k| phi[k] > MOVING_PHI && u_p[k] > MOVING_U_P * top && top > 0.0).collect();
+    let keep = moving_rows(z, phi, u_p);
     if keep.is_empty() {
         return None;
     }
@@ -65,7 +70,7 @@ pub(super) fn shaped(p: &Profiles, h_g: f64, align: bool) -> Option<Cow<'_, Prof
 /// where no grain is); z taken from the bed surface (the level below which [`BED_FLUX`] of
 /// the flux flows, as the summaries' bed surface) when `align`. `None` without z, phi and
 /// u_p, with z that are not increasing cell centres, or, when aligned, without a flux.
-pub(super) fn prepared(p: &Profiles, h_g: f64, align: bool) -> Option<Profiles> {
+pub(crate) fn prepared(p: &Profiles, h_g: f64, align: bool) -> Option<Profiles> {
     let (z, phi, u_p) = (p.get("z")?, p.get("phi")?, p.get("u_p")?);
     let n = z.len();
     if n == 0 || phi.len() != n || u_p.len() != n {

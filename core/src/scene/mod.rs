@@ -42,7 +42,7 @@ pub use lagrangian::{
     Case, DragVelocity, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, FREY_LEVELS, MAX_FLUID_CELLS, MAX_PARTICLES,
     MAX_SIDE_DIAMETERS,
 };
-pub use overrides::{apply_override, parse_table};
+pub use overrides::{apply_override, parse_table, FACES};
 pub use presets::{Accuracy, Preset};
 pub use python::Python;
 pub use solver::{
