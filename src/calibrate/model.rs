@@ -44,8 +44,8 @@ pub struct Fit {
     /// the term's independent values times the seeds; 1 times the seeds for qs*) and the
     /// priors' squares
     pub residuals: Vec<f64>,
-    /// factor of each residual that makes it one of chi^2 (its weight undone, the
-    /// independent values and seeds counted): the Jacobian of the covariance
+    /// factor of each residual that makes it one of the unweighted chi^2 (its term's
+    /// weight undone): the Jacobian of the covariance is scaled by it
     pub chi_scale: Vec<f64>,
     /// each term's RMS over the reference's scatter
     pub ratios: Vec<f64>,
@@ -230,7 +230,7 @@ impl Problem {
                 ss += d * d;
                 f.residuals.push(scale * d);
             }
-            f.chi_scale.extend(std::iter::repeat(weight(&term.name).sqrt().recip()).take(term.z.len()));
+            f.chi_scale.extend(std::iter::repeat_n(weight(&term.name).sqrt().recip(), term.z.len()));
             let rms = (ss / n).sqrt();
             let ratio = rms / term.scatter;
             f.rms.push(rms);

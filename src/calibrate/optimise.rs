@@ -93,8 +93,6 @@ pub fn reason(t: &TerminationReason, budget: bool) -> String {
 pub struct Minimum {
     /// every constant (the fixed ones at their values)
     pub params: Vec<f64>,
-    /// the weighted misfit there
-    pub misfit: f64,
     /// the stopping reason, in words
     pub reason: String,
     /// whether it converged
@@ -200,7 +198,6 @@ pub fn minimise(problem: &Problem, start: &[f64], free: &[usize], budget: usize,
     if free.is_empty() {
         return Some(Minimum {
             params: start.to_vec(),
-            misfit: s0,
             reason: "nothing to fit".into(),
             converged: true,
             evaluations: 1,
@@ -221,11 +218,10 @@ pub fn minimise(problem: &Problem, start: &[f64], free: &[usize], budget: usize,
     let lm = LevenbergMarquardt::new().with_ftol(tol).with_xtol(tol).with_gtol(1e-12).with_patience(budget.max(1));
     let (target, report) = lm.minimize(target);
     let spent = target.budget.lock().map_or(true, |b| *b == 0);
-    let (misfit, params) = target.best.lock().ok()?.clone();
+    let (_, params) = target.best.lock().ok()?.clone();
     let used = problem.log.lock().map_or(0, |l| l.len()) - used_before + 1;
     Some(Minimum {
         params,
-        misfit,
         reason: reason(&report.termination, spent && !report.termination.was_successful()),
         converged: report.termination.was_successful(),
         evaluations: used,

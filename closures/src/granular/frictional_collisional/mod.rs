@@ -9,8 +9,7 @@ use saltus_core::{
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::kinetic::{
-    garzo_dufty as gd, radial_distribution::friction_regressor, saltation, ChialvoSundaresanG0, DragDissipation,
-    RadialDistribution, RestitutionModel, Saltation,
+    garzo_dufty as gd, saltation, ChialvoSundaresanG0, DragDissipation, RadialDistribution, RestitutionModel, Saltation,
 };
 
 /// Static friction mu_s of the Coulomb elastic shear stress tau_el = mu_s p_el.
@@ -301,7 +300,7 @@ impl KineticTheory for FrictionalCollisional {
     }
 
     fn radial_distribution_regressor(&self, phi: f64) -> f64 {
-        friction_regressor(phi, self.phi_max)
+        self.g0.regressor(phi, self.phi_max)
     }
 
     fn saltation_input(&self, phi: f64, t: f64, beta: f64, rho_p: f64, d: f64) -> SaltationInput {

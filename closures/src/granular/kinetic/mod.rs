@@ -9,6 +9,8 @@ pub mod restitution;
 pub mod saltation;
 
 pub use drag_dissipation::DragDissipation;
-pub use radial_distribution::{ChialvoSundaresanFrictionG0, ChialvoSundaresanG0, RadialDistribution};
+pub use radial_distribution::{
+    ChialvoSundaresanFrictionG0, ChialvoSundaresanG0, ChialvoSundaresanPowerG0, RadialDistribution, TorquatoG0,
+};
 pub use restitution::{JenkinsZhang, RestitutionModel};
 pub use saltation::Saltation;
