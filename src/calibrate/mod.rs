@@ -24,7 +24,7 @@
 //! ```
 //!
 //! **The misfit.** Each term t is compared with the reference's scatter s_t (the standard
-//! deviation of one seed about the seeds' mean, [`reference`]): a profile term over the
+//! deviation of one seed about the seeds' mean, [`mod@reference`]): a profile term over the
 //! reference's moving layer by its RMS difference, rho_t = RMS / s_t; qs* by
 //! rho = |qs* - qs*_ref| / s. The minimised sum is the chi^2 of the statistical model in
 //! which the reference (a mean of N seeds) scatters about the model: chi^2 = sum_t w_t
@@ -198,77 +198,38 @@ pub fn run(cal: Calibration, out: &Path) -> anyhow::Result<CalibrationReport> {
     let start_report = problem.run(&problem.start).context("the model at the start values")?;
     let (start_terms, chi2_start) = terms(&problem, &start_report, &problem.start)?;
     let budget = problem.cal.optimiser.max_evaluations;
-    let min = optimise::minimise(&problem, &problem.start, &all, budget, "minimise")
-        .context("the model at the start values gives no misfit")?;
+    let mut from = problem.start.clone();
+    let mut restarts = 0;
+    let mut evaluations_minimise = 0;
+    let (min, local) = loop {
+        let min = optimise::minimise(&problem, &from, &all, budget, "minimise")
+            .context("the model at the start values gives no misfit")?;
+        evaluations_minimise += min.evaluations;
+        let local = analyse(&problem, &min.params, &mut warnings)?;
+        // a profile that refits below the optimum found a lower valley: start again there
+        let lower = local
+            .profiles
+            .iter()
+            .flatten()
+            .filter(|p| p.delta_chi2 < -1e-3 * local.chi2.max(1.0))
+            .min_by(|a, b| a.delta_chi2.total_cmp(&b.delta_chi2));
+        match lower {
+            Some(p) if restarts < MAX_RESTARTS => {
+                warnings.push(format!(
+                    "a profile likelihood refitted to chi2 {:.4} below the optimum's {:.4}: minimised again from there",
+                    local.chi2 + p.delta_chi2,
+                    local.chi2
+                ));
+                from = p.params.clone();
+                restarts += 1;
+            }
+            _ => break (min, local),
+        }
+    };
     let optimum = min.params.clone();
-    let evaluations_minimise = min.evaluations;
-
-    // the covariance and the profiles from the optimum's state
-    problem.anchor(&optimum);
-    let (j, centre) = optimise::jacobian(&problem, &optimum, &all, "covariance")
-        .context("the Jacobian at the optimum: a model run failed")?;
-    let mut j_chi = j;
-    for (i, s) in centre.chi_scale.iter().enumerate() {
-        j_chi.row_mut(i).scale_mut(*s);
-    }
-    let chi2 = centre.chi2;
-    let independent: f64 =
-        problem.reference.profiles.iter().map(|t| t.independent * problem.reference.seeds as f64).sum::<f64>()
-            + problem.reference.rate.map_or(0.0, |_| problem.reference.seeds as f64)
-            + problem.cal.parameters.iter().filter(|p| p.prior.is_some()).count() as f64;
-    let dof = (independent - m as f64).max(1.0);
-    let inflation = (chi2 / dof).max(1.0).sqrt();
-    let cov = inverse(j_chi.transpose() * &j_chi);
-    if cov.is_none() {
-        warnings.push(
-            "the constants are not identifiable at the optimum (J^T J singular): no covariance; see the profile likelihoods"
-                .into(),
-        );
-    }
-    let stat: Vec<f64> = (0..m).map(|k| cov.as_ref().map_or(f64::NAN, |c| c[(k, k)].max(0.0).sqrt())).collect();
-    let correlation: Vec<Vec<f64>> = (0..m)
-        .map(|a| (0..m).map(|b| cov.as_ref().map_or(f64::NAN, |c| c[(a, b)] / (stat[a] * stat[b]))).collect())
-        .collect();
-    let covariance: Vec<Vec<f64>> = (0..m)
-        .map(|a| (0..m).map(|b| cov.as_ref().map_or(f64::NAN, |c| c[(a, b)] * inflation * inflation)).collect())
-        .collect();
+    let Analysis { chi2, dof, inflation, stat, correlation, covariance, profiles } = local;
     let optimum_report = problem.run(&optimum).context("the model at the optimum")?;
     let (optimum_terms, _) = terms(&problem, &optimum_report, &optimum)?;
-
-    // profile likelihoods: each constant held, the others refitted from the optimum
-    let points = problem.cal.optimiser.profile_points;
-    let span = problem.cal.optimiser.profile_span;
-    let profiles: Vec<Vec<ProfilePoint>> = (0..m)
-        .map(|k| {
-            let [lo, hi] = problem.cal.parameters[k].bounds;
-            let sigma = if stat[k].is_finite() && stat[k] > 0.0 { stat[k] } else { 0.05 * (hi - lo) };
-            let inner = |v: f64| v.clamp(lo + 1e-3 * (hi - lo), hi - 1e-3 * (hi - lo));
-            let values: Vec<f64> = (1..=points)
-                .flat_map(|i| {
-                    let d = span * sigma * i as f64 / points as f64;
-                    [inner(optimum[k] - d), inner(optimum[k] + d)]
-                })
-                .collect();
-            let others: Vec<usize> = (0..m).filter(|&i| i != k).collect();
-            let purpose = format!("profile:{}", problem.cal.parameters[k].key);
-            let mut pts: Vec<ProfilePoint> = values
-                .par_iter()
-                .with_max_len(1)
-                .filter_map(|&v| {
-                    let mut p = optimum.clone();
-                    p[k] = v;
-                    let fit = optimise::minimise(&problem, &p, &others, 60, &purpose)?;
-                    let report = problem.run(&fit.params).ok()?;
-                    let f = problem.fit(&fit.params, &report)?;
-                    Some(ProfilePoint { value: v, delta_chi2: f.chi2 - chi2, params: fit.params })
-                })
-                .collect();
-            pts.push(ProfilePoint { value: optimum[k], delta_chi2: 0.0, params: optimum.clone() });
-            pts.sort_by(|a, b| a.value.total_cmp(&b.value));
-            pts.dedup_by(|a, b| a.value == b.value);
-            pts
-        })
-        .collect();
 
     let fitted: Vec<Fitted> = problem
         .cal
@@ -361,4 +322,91 @@ impl CalibrationReport {
         ));
         s
     }
+}
+
+/// Most restarts of the minimisation from a lower point its profile likelihoods found.
+const MAX_RESTARTS: usize = 2;
+
+/// What the neighbourhood of an optimum says: its chi^2, the covariance and the profiles.
+struct Analysis {
+    chi2: f64,
+    dof: f64,
+    inflation: f64,
+    stat: Vec<f64>,
+    correlation: Vec<Vec<f64>>,
+    covariance: Vec<Vec<f64>>,
+    profiles: Vec<Vec<ProfilePoint>>,
+}
+
+/// The covariance at `optimum` (from its Jacobian, scaled by the reference's scatter and
+/// inflated by chi^2/dof where that exceeds 1) and each constant's profile likelihood.
+fn analyse(problem: &Problem, optimum: &[f64], warnings: &mut Vec<String>) -> anyhow::Result<Analysis> {
+    let m = optimum.len();
+    let optimum = &optimum.to_vec();
+    let all: Vec<usize> = (0..m).collect();
+    // the covariance and the profiles from the optimum's state
+    problem.anchor(optimum);
+    let (j, centre) = optimise::jacobian(problem, optimum, &all, "covariance")
+        .context("the Jacobian at the optimum: a model run failed")?;
+    let mut j_chi = j;
+    for (i, s) in centre.chi_scale.iter().enumerate() {
+        j_chi.row_mut(i).scale_mut(*s);
+    }
+    let chi2 = centre.chi2;
+    let independent: f64 =
+        problem.reference.profiles.iter().map(|t| t.independent * problem.reference.seeds as f64).sum::<f64>()
+            + problem.reference.rate.map_or(0.0, |_| problem.reference.seeds as f64)
+            + problem.cal.parameters.iter().filter(|p| p.prior.is_some()).count() as f64;
+    let dof = (independent - m as f64).max(1.0);
+    let inflation = (chi2 / dof).max(1.0).sqrt();
+    let cov = inverse(j_chi.transpose() * &j_chi);
+    if cov.is_none() {
+        warnings.push(
+            "the constants are not identifiable at the optimum (J^T J singular): no covariance; see the profile likelihoods"
+                .into(),
+        );
+    }
+    let stat: Vec<f64> = (0..m).map(|k| cov.as_ref().map_or(f64::NAN, |c| c[(k, k)].max(0.0).sqrt())).collect();
+    let correlation: Vec<Vec<f64>> = (0..m)
+        .map(|a| (0..m).map(|b| cov.as_ref().map_or(f64::NAN, |c| c[(a, b)] / (stat[a] * stat[b]))).collect())
+        .collect();
+    let covariance: Vec<Vec<f64>> = (0..m)
+        .map(|a| (0..m).map(|b| cov.as_ref().map_or(f64::NAN, |c| c[(a, b)] * inflation * inflation)).collect())
+        .collect();
+    // profile likelihoods: each constant held, the others refitted from the optimum
+    let points = problem.cal.optimiser.profile_points;
+    let span = problem.cal.optimiser.profile_span;
+    let profiles: Vec<Vec<ProfilePoint>> = (0..m)
+        .map(|k| {
+            let [lo, hi] = problem.cal.parameters[k].bounds;
+            let sigma = if stat[k].is_finite() && stat[k] > 0.0 { stat[k] } else { 0.05 * (hi - lo) };
+            let inner = |v: f64| v.clamp(lo + 1e-3 * (hi - lo), hi - 1e-3 * (hi - lo));
+            let values: Vec<f64> = (1..=points)
+                .flat_map(|i| {
+                    let d = span * sigma * i as f64 / points as f64;
+                    [inner(optimum[k] - d), inner(optimum[k] + d)]
+                })
+                .collect();
+            let others: Vec<usize> = (0..m).filter(|&i| i != k).collect();
+            let purpose = format!("profile:{}", problem.cal.parameters[k].key);
+            let mut pts: Vec<ProfilePoint> = values
+                .par_iter()
+                .with_max_len(1)
+                .filter_map(|&v| {
+                    let mut p = optimum.clone();
+                    p[k] = v;
+                    let fit = optimise::minimise(&problem, &p, &others, 60, &purpose)?;
+                    let report = problem.run(&fit.params).ok()?;
+                    let f = problem.fit(&fit.params, &report)?;
+                    Some(ProfilePoint { value: v, delta_chi2: f.chi2 - chi2, params: fit.params })
+                })
+                .collect();
+            pts.push(ProfilePoint { value: optimum[k], delta_chi2: 0.0, params: optimum.clone() });
+            pts.sort_by(|a, b| a.value.total_cmp(&b.value));
+            pts.dedup_by(|a, b| a.value == b.value);
+            pts
+        })
+        .collect();
+
+    Ok(Analysis { chi2, dof, inflation, stat, correlation, covariance, profiles })
 }

@@ -6,7 +6,10 @@
 //! that mean: the pooled standard deviation of the seeds, sqrt(mean over the rows of
 //! sd_i^2), sd_i the sample standard deviation of the N seeds at row i. With one run or
 //! data, s is the file's `scatter`. The qs* term is the seeds' mean with their sample
-//! standard deviation (one run: its own standard error; data: `qs_star` with `scatter`).
+//! standard deviation, or the RMS of the runs' own standard errors where that is larger (a
+//! seed scatters at least by its time-averaging error; two seeds can agree far closer by
+//! chance); one run: its own standard error; data: `qs_star` with `scatter`. A `scatter`
+//! given in the file replaces the runs' own.
 
 use std::path::Path;
 
@@ -211,7 +214,17 @@ pub fn load(cal: &Calibration, scene: &Scene) -> anyhow::Result<Reference> {
                     "one run without a standard error of qs*: give more runs or the scatter".into(),
                 ))
             }
-            (None, _, _) => sd,
+            // a seed's scatter is at least its own time-averaging error: with few seeds
+            // their sample deviation can fall far below it by chance
+            (None, _, _) => {
+                let errors: Vec<f64> = runs.iter().filter_map(|(_, s)| s.qs_star_stderr).collect();
+                let floor = if errors.is_empty() {
+                    0.0
+                } else {
+                    (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt()
+                };
+                sd.max(floor)
+            }
         };
         if !(scatter > 0.0 && scatter.is_finite()) {
             return Err(refuse(
