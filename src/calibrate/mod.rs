@@ -395,7 +395,7 @@ fn analyse(problem: &Problem, optimum: &[f64], warnings: &mut Vec<String>) -> an
                 .filter_map(|&v| {
                     let mut p = optimum.clone();
                     p[k] = v;
-                    let fit = optimise::minimise(&problem, &p, &others, 60, &purpose)?;
+                    let fit = optimise::minimise(problem, &p, &others, 60, &purpose)?;
                     let report = problem.run(&fit.params).ok()?;
                     let f = problem.fit(&fit.params, &report)?;
                     Some(ProfilePoint { value: v, delta_chi2: f.chi2 - chi2, params: fit.params })
