@@ -2,8 +2,9 @@
 //! the Chassagne et al. 2023 table 2 scenes carry the table's parameters (Shields number from
 //! the water depth, density ratio, diameter, friction, restitution, bed of 12.5 d).
 //!
-//! Comparison files (a top-level `base` key) and closure comparison files (`cases/closures/`)
-//! are not scenes and are skipped. No solver is run here: the runs belong to the solver
+//! Comparison and calibration files (a top-level `base` key), closure comparison files
+//! (`cases/closures/`) and the scene copies inside reference run folders (a folder holding a
+//! run's `manifest.json`) are not scenes and are skipped. No solver is run here: the runs belong to the solver
 //! tests and to `saltus run`.
 
 use std::path::{Path, PathBuf};
@@ -15,8 +16,13 @@ fn cases_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("cases")
 }
 
-/// Every `.toml` file under `dir`, recursively, sorted.
+/// Every `.toml` file under `dir`, recursively, sorted; run folders (a `manifest.json`
+/// beside the files, as `saltus run` writes them) hold a copy of the scene they ran, which
+/// is an output, not a scene of the case tree.
 fn toml_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    if dir.join("manifest.json").is_file() {
+        return;
+    }
     let entries = std::fs::read_dir(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
     for entry in entries {
         let path = entry.expect("directory entry").path();
