@@ -166,6 +166,17 @@ impl Problem {
                     format!("[{lo}, {hi}] exclude the start {s} (the base scene's `{}`)", p.key),
                 ));
             }
+            if !super::optimise::resolves(s, p.bounds) {
+                return Err(key_error(
+                    file,
+                    format!("parameter[{i}].bounds"),
+                    format!(
+                        "[{lo}, {hi}] are too wide for the start {s} of `{}`: the bounded search cannot resolve it; \
+                         give bounds within a few orders of magnitude of the start",
+                        p.key
+                    ),
+                ));
+            }
             start.push(s);
         }
         let reference = reference::load(&cal, &scene)?;
@@ -173,6 +184,23 @@ impl Problem {
             Problem { cal, scene, reference, table, start, warm: Mutex::new(None), log: Mutex::new(Vec::new()) };
         // a start the closures refuse (a value outside a closure's range) fails here
         problem.scene_at(&problem.start)?;
+        // and so does a bound: the optimiser may step to either end of each range
+        for (i, par) in problem.cal.parameters.iter().enumerate() {
+            for bound in par.bounds {
+                let mut p = problem.start.clone();
+                p[i] = bound;
+                if let Err(e) = problem.scene_at(&p) {
+                    return Err(key_error(
+                        &problem.cal.file,
+                        format!("parameter[{i}].bounds"),
+                        format!(
+                            "[{}, {}]: the closure refuses `{}` = {bound}, so the optimiser could not reach that bound: {e}",
+                            par.bounds[0], par.bounds[1], par.key
+                        ),
+                    ));
+                }
+            }
+        }
         Ok(problem)
     }
 

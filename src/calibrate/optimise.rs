@@ -23,6 +23,15 @@ fn to_u(p: f64, [lo, hi]: [f64; 2]) -> f64 {
     (2.0 * (p - lo) / (hi - lo) - 1.0).clamp(-1.0, 1.0).asin()
 }
 
+/// Whether the transformation carries `p` inside `bounds` to u and back to within 1e-9
+/// of its size: bounds so wide against the start that it is lost (or whose span
+/// overflows) leave the optimiser no resolution where it begins.
+pub fn resolves(p: f64, bounds: [f64; 2]) -> bool {
+    let span = bounds[1] - bounds[0];
+    let scale = if p != 0.0 { p.abs() } else { span };
+    span.is_finite() && (to_p(to_u(p, bounds), bounds) - p).abs() <= 1e-9 * scale
+}
+
 /// dp/du at u.
 fn dp_du(u: f64, [lo, hi]: [f64; 2]) -> f64 {
     (hi - lo) * u.cos() / 2.0
@@ -246,5 +255,16 @@ mod tests {
             let p = to_p(u, b);
             assert!((0.2..=3.0).contains(&p));
         }
+    }
+
+    #[test]
+    fn bounds_too_wide_for_the_start_are_told_apart() {
+        assert!(resolves(0.05, [0.01, 0.5]));
+        assert!(resolves(0.0, [-1.0, 1.0]));
+        assert!(resolves(1e-3, [0.0, 1.0]));
+        // the start is lost in the span: u maps back to the lower bound
+        assert!(!resolves(0.05, [0.01, 1e308]));
+        // the span overflows
+        assert!(!resolves(0.0, [-1e308, 1e308]));
     }
 }

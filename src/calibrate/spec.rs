@@ -188,7 +188,11 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Calibration> {
             return Err(key_error(path, at("bounds"), format!("[{lo}, {hi}]: two finite numbers, the lower first")));
         }
         if let Some(s) = p.start.filter(|s| !(s.is_finite() && *s > lo && *s < hi)) {
-            return Err(key_error(path, at("start"), format!("{s}: inside the bounds ({lo}, {hi})")));
+            return Err(key_error(
+                path,
+                at("start"),
+                format!("{s} for `{}`: must lie inside its bounds ({lo}, {hi})", p.key),
+            ));
         }
         if let Some(pr) = &p.prior {
             if !pr.mean.is_finite() || !finite_positive(pr.sd) {

@@ -1,0 +1,172 @@
+//! `saltus calibrate`: constants recovered from a reference the model itself made with
+//! known constants, the calibrated closures reproducing it under `saltus run --closures`,
+//! and bad calibrate files refused by name (by `--check` exactly as by a run).
+
+mod common;
+use common::*;
+use std::path::Path;
+
+const G0: &str = r#"closures.granular.g0={type="chialvo_sundaresan_friction", a_max=3.0}"#;
+
+/// Case 1 run with a_max = 3.0 (eq 3.3) and P0 = 0.08 Pa (eq 2.14) in place of the
+/// defaults 3.70 and 0.05: the reference whose constants a calibration must find.
+fn synthetic_reference(dir: &Path) -> std::path::PathBuf {
+    let out = dir.join("reference");
+    let o = saltus(&["run", CASE01, "--set", G0, "--set", "closures.granular.p0=0.08", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    out
+}
+
+fn calibrate_file(reference: &Path, parameters: &str, extra: &str) -> String {
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join(CASE01);
+    format!(
+        r#"base = "{}"
+set = ['closures.granular.g0={{type="chialvo_sundaresan_friction", a_max=3.7}}']
+{parameters}
+[reference]
+runs = ["{}"]
+scatter = {{ phi = 0.01, u_p = 0.01, qs_star = 0.01 }}
+{extra}
+"#,
+        base.display(),
+        reference.display()
+    )
+}
+
+const TWO: &str = r#"
+[[parameter]]
+key = "closures.granular.g0.a_max"
+bounds = [1.5, 6.0]
+
+[[parameter]]
+key = "closures.granular.p0"
+bounds = [0.01, 0.5]
+"#;
+
+#[test]
+fn constants_of_a_synthetic_reference_are_recovered_within_their_errors() {
+    let d = tmp_dir("calibrate_synthetic");
+    let reference = synthetic_reference(&d);
+    let cal = write(&d, "cal.toml", &calibrate_file(&reference, TWO, "[optimiser]\nprofile_points = 2\n"));
+    let out = d.join("out");
+    let o = saltus(&["calibrate", cal.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("calibration.json")).unwrap()).unwrap();
+    let params = j["parameters"].as_array().unwrap();
+    for (p, truth) in params.iter().zip([3.0, 0.08]) {
+        let (value, err) = (p["value"].as_f64().unwrap(), p["stderr"].as_f64().unwrap());
+        assert!(err.is_finite() && err > 0.0, "{p}");
+        // the reference has no noise: the optimum is the truth, far inside its error bar
+        assert!((value - truth).abs() < 0.05 * err, "{} = {value} +- {err}, truth {truth}", p["key"]);
+        assert!((value - truth).abs() < 1e-3 * truth, "{} = {value}, truth {truth}", p["key"]);
+    }
+    // the misfit falls from the defaults' to the reference's own (zero) level
+    let start = j["misfit"]["chi2_start"].as_f64().unwrap();
+    let optimum = j["misfit"]["chi2"].as_f64().unwrap();
+    assert!(start > 1.0 && optimum < 1e-4 * start, "chi2 {start} -> {optimum}");
+    // correlations are a unit-diagonal symmetric matrix within [-1, 1]
+    let c = j["correlation"].as_array().unwrap();
+    for i in 0..2 {
+        for k in 0..2 {
+            let v = c[i][k].as_f64().unwrap();
+            assert!(v.abs() <= 1.0 + 1e-12, "{v}");
+            assert!((v - c[k][i].as_f64().unwrap()).abs() < 1e-12);
+        }
+        assert!((c[i][i].as_f64().unwrap() - 1.0).abs() < 1e-12);
+    }
+    // every evaluation is logged, and the figures are drawn
+    let (header, rows) = read_table(&out.join("calibration.csv"));
+    assert!(header.iter().any(|h| h == "closures.granular.p0"), "{header:?}");
+    assert!(rows.len() > 10, "{} evaluations", rows.len());
+    assert_png(&out.join("calibration_profiles.png"));
+    assert_png(&out.join("profile_likelihood.png"));
+
+    // the calibrated closures reproduce the reference's rate through `run --closures`
+    let rerun = d.join("rerun");
+    let calibrated = out.join("calibrated.toml");
+    let o = saltus(&["run", CASE01, "--closures", calibrated.to_str().unwrap(), "--out", rerun.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (q, q_ref) = (summary(&rerun)["qs_star"].as_f64().unwrap(), summary(&reference)["qs_star"].as_f64().unwrap());
+    assert!((q - q_ref).abs() < 1e-4 * q_ref, "qs* {q} against the reference's {q_ref}");
+}
+
+/// `--check` and a run refuse the file alike, with the message naming the key.
+fn refused(name: &str, cal: &str, key: &str) {
+    let d = tmp_dir(name);
+    let p = write(&d, "cal.toml", cal);
+    let out = d.join("out");
+    for args in [
+        vec!["calibrate", p.to_str().unwrap(), "--check"],
+        vec!["calibrate", p.to_str().unwrap(), "--out", out.to_str().unwrap()],
+    ] {
+        let o = saltus(&args);
+        let err = assert_clean_failure(&o);
+        assert!(err.contains(key), "{args:?}: expected `{key}` in: {err}");
+        assert!(err.contains("cal.toml"), "{args:?}: expected the file in: {err}");
+    }
+    assert!(!out.join("calibration.json").exists(), "a refused file wrote outputs");
+}
+
+fn existing_reference() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/chassagne2023/reference/case01_dem_s1")
+}
+
+#[test]
+fn a_key_that_is_no_closure_constant_is_refused() {
+    let p = "[[parameter]]\nkey = \"domain.water_depth\"\nbounds = [0.05, 0.2]\n";
+    refused("cal_not_closure", &calibrate_file(&existing_reference(), p, ""), "domain.water_depth");
+}
+
+#[test]
+fn a_key_the_scene_does_not_have_is_refused() {
+    let p = "[[parameter]]\nkey = \"closures.granular.no_such_constant\"\nbounds = [0.1, 1.0]\n";
+    refused("cal_unknown_key", &calibrate_file(&existing_reference(), p, ""), "no_such_constant");
+}
+
+#[test]
+fn bounds_that_exclude_the_start_or_are_not_finite_are_refused() {
+    let p = "[[parameter]]\nkey = \"closures.granular.p0\"\nbounds = [0.1, 0.5]\nstart = 0.05\n";
+    refused("cal_start_outside", &calibrate_file(&existing_reference(), p, ""), "closures.granular.p0");
+    let p = "[[parameter]]\nkey = \"closures.granular.p0\"\nbounds = [0.01, nan]\n";
+    refused("cal_nan_bound", &calibrate_file(&existing_reference(), p, ""), "bounds");
+    let p = "[[parameter]]\nkey = \"closures.granular.p0\"\nbounds = [0.01, 1e308]\n";
+    refused("cal_huge_bound", &calibrate_file(&existing_reference(), p, ""), "bounds");
+}
+
+#[test]
+fn a_missing_reference_folder_is_refused() {
+    let d = tmp_dir("cal_missing_ref_folder");
+    refused("cal_missing_ref", &calibrate_file(&d.join("nowhere"), TWO, ""), "nowhere");
+}
+
+#[test]
+fn a_zero_or_non_finite_scatter_is_refused() {
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join(CASE01);
+    for (name, s) in [("cal_zero_scatter", "0.0"), ("cal_nan_scatter", "nan"), ("cal_inf_scatter", "1e309")] {
+        let cal = format!(
+            "base = \"{}\"\n{TWO}\n[reference]\nruns = [\"{}\"]\nscatter = {{ phi = {s}, u_p = 0.01, qs_star = 0.01 }}\n",
+            base.display(),
+            existing_reference().display()
+        );
+        refused(name, &cal, "scatter");
+    }
+}
+
+#[test]
+fn a_single_run_without_scatter_is_refused() {
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join(CASE01);
+    let cal =
+        format!("base = \"{}\"\n{TWO}\n[reference]\nruns = [\"{}\"]\n", base.display(), existing_reference().display());
+    refused("cal_one_run", &cal, "reference.scatter");
+}
+
+#[test]
+fn malformed_toml_unknown_keys_and_terms_are_refused() {
+    refused("cal_malformed", "base = \"x.toml\"\n[[parameter]\n", "cal.toml");
+    let r = existing_reference();
+    refused("cal_unknown_top", &calibrate_file(&r, TWO, "[optimizer]\nmax_evaluations = 3\n"), "optimizer");
+    refused("cal_unknown_term", &calibrate_file(&r, TWO, "[misfit]\nterms = [\"theta\"]\n"), "theta");
+    refused("cal_no_parameter", &calibrate_file(&r, "", ""), "parameter");
+    refused("cal_zero_evals", &calibrate_file(&r, TWO, "[optimiser]\nmax_evaluations = 0\n"), "max_evaluations");
+}
