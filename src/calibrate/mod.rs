@@ -109,6 +109,13 @@ pub struct Fitted {
     pub stderr: f64,
     /// standard error from the reference's scatter alone
     pub stderr_statistical: f64,
+    /// below and above the optimum, the standard error of the profile likelihood: from
+    /// its nearest point on each side, the parabola through the optimum and that point
+    /// crosses delta chi^2 = 1 at this distance (NaN where the side has no point). Where it
+    /// is smaller than `stderr_statistical`, chi^2 is curved more than J^T J says (the
+    /// residuals' own curvature, which Gauss-Newton leaves out, weighs when chi^2_min is
+    /// large) and the profile is the better error.
+    pub stderr_profile: [f64; 2],
     /// bounds
     pub bounds: [f64; 2],
     /// whether the optimum sits within 1e-3 of the span of a bound
@@ -245,6 +252,7 @@ pub fn run(cal: Calibration, out: &Path) -> anyhow::Result<CalibrationReport> {
                 value: optimum[k],
                 stderr: stat[k] * inflation,
                 stderr_statistical: stat[k],
+                stderr_profile: profile_errors(optimum[k], &profiles[k]),
                 bounds: p.bounds,
                 at_bound: optimum[k] - lo < near || hi - optimum[k] < near,
                 profile: profiles[k].clone(),
@@ -291,6 +299,19 @@ pub fn run(cal: Calibration, out: &Path) -> anyhow::Result<CalibrationReport> {
     Ok(report)
 }
 
+/// The profile likelihood's standard error below and above `optimum` (see
+/// [`Fitted::stderr_profile`]).
+fn profile_errors(optimum: f64, profile: &[ProfilePoint]) -> [f64; 2] {
+    let side = |below: bool| {
+        profile
+            .iter()
+            .filter(|q| (q.value < optimum) == below && q.value != optimum && q.delta_chi2 > 0.0)
+            .min_by(|a, b| (a.value - optimum).abs().total_cmp(&(b.value - optimum).abs()))
+            .map_or(f64::NAN, |q| (q.value - optimum).abs() / q.delta_chi2.sqrt())
+    };
+    [side(true), side(false)]
+}
+
 impl CalibrationReport {
     /// A few lines for the terminal: each constant with its error, the misfit at the start
     /// and at the optimum against the scatter, the stopping reason and the cost.
@@ -298,8 +319,8 @@ impl CalibrationReport {
         let mut s = String::new();
         for f in &self.fitted {
             s.push_str(&format!(
-                "{} = {:.6} +- {:.2e} (from the scatter alone +- {:.2e}; start {})\n",
-                f.key, f.value, f.stderr, f.stderr_statistical, f.start
+                "{} = {:.6} +- {:.2e} (from the scatter alone +- {:.2e}; profile likelihood -{:.2e} +{:.2e}; start {})\n",
+                f.key, f.value, f.stderr, f.stderr_statistical, f.stderr_profile[0], f.stderr_profile[1], f.start
             ));
         }
         let line =
@@ -409,4 +430,21 @@ fn analyse(problem: &Problem, optimum: &[f64], warnings: &mut Vec<String>) -> an
         .collect();
 
     Ok(Analysis { chi2, dof, inflation, stat, correlation, covariance, profiles })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_quadratic_profile_gives_its_standard_error_on_both_sides() {
+        let (opt, sd) = (2.0, 0.5);
+        let point = |v: f64| ProfilePoint { value: v, delta_chi2: ((v - opt) / sd).powi(2), params: vec![v] };
+        let profile: Vec<ProfilePoint> = [1.0, 1.7, 2.0, 2.4, 3.5].into_iter().map(point).collect();
+        let [below, above] = profile_errors(opt, &profile);
+        assert!((below - sd).abs() < 1e-12 && (above - sd).abs() < 1e-12, "{below} {above}");
+        // a side without points has no error
+        let [below, above] = profile_errors(opt, &profile[2..]);
+        assert!(below.is_nan() && (above - sd).abs() < 1e-12);
+    }
 }

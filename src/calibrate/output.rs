@@ -132,7 +132,8 @@ pub fn write_json(problem: &Problem, r: &CalibrationReport, out: &Path) -> anyho
                 .collect();
             serde_json::json!({
                 "key": f.key, "start": num(f.start), "value": num(f.value), "stderr": num(f.stderr),
-                "stderr_statistical": num(f.stderr_statistical), "bounds": [num(f.bounds[0]), num(f.bounds[1])],
+                "stderr_statistical": num(f.stderr_statistical),
+                "stderr_profile": [num(f.stderr_profile[0]), num(f.stderr_profile[1])], "bounds": [num(f.bounds[0]), num(f.bounds[1])],
                 "prior": p.prior.map(|pr| serde_json::json!({"mean": pr.mean, "sd": pr.sd})),
                 "at_bound": f.at_bound, "profile_likelihood": profile,
             })
