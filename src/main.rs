@@ -416,15 +416,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Calibrate { file, set, out, check } => {
             let cal = saltus::calibrate::load(&file, &set)?;
             if check {
-                let problem = saltus::calibrate::Problem::new(cal)?;
-                let r = &problem.reference;
-                outln!(
-                    "{}: {} free constants, {} reference terms over {} seed(s); ok",
-                    file.display(),
-                    problem.start.len(),
-                    r.profiles.len() + usize::from(r.rate.is_some()),
-                    r.seeds
-                );
+                outln!("{}", saltus::calibrate::check(cal)?);
                 return Ok(());
             }
             let out = out.unwrap_or_else(|| saltus::calibrate::default_out(&cal));

@@ -31,7 +31,7 @@ import numpy as np
 
 from . import _native, _study
 from ._native import RunError, SceneError
-from ._study import CompareResult, SweepResult, compare, sweep
+from ._study import CalibrationResult, CompareResult, SweepResult, calibrate, check_calibration, compare, sweep
 from . import closures as _closures
 from .closures import register_fluctuation, register_kinetic_theory, register_mixing_length, register_rheology
 
@@ -39,6 +39,9 @@ __all__ = [
     "run",
     "compare",
     "CompareResult",
+    "calibrate",
+    "check_calibration",
+    "CalibrationResult",
     "sweep",
     "SweepResult",
     "check",

@@ -191,6 +191,21 @@ fn inverse(a: DMatrix<f64>) -> Option<DMatrix<f64>> {
     inv.iter().all(|v| v.is_finite()).then_some(inv)
 }
 
+/// Check `cal` as a run would (base scene, keys, bounds at both ends, reference) without
+/// running the model; a line saying what it would fit.
+pub fn check(cal: Calibration) -> anyhow::Result<String> {
+    let file = cal.file.clone();
+    let problem = Problem::new(cal)?;
+    let r = &problem.reference;
+    Ok(format!(
+        "{}: {} free constants, {} reference terms over {} seed(s); ok",
+        file.display(),
+        problem.start.len(),
+        r.profiles.len() + usize::from(r.rate.is_some()),
+        r.seeds
+    ))
+}
+
 /// Run the calibration `cal` into `out`: minimise, take the covariance at the optimum and
 /// the profile likelihoods, write [`CALIBRATED`], [`TABLE`], [`JSON`] and the figures.
 pub fn run(cal: Calibration, out: &Path) -> anyhow::Result<CalibrationReport> {
