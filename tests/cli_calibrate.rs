@@ -200,3 +200,29 @@ fn case_14_calibrated_on_its_dem_meets_it_within_the_seed_scatter() {
     let (n, sd) = (exponent["value"].as_f64().unwrap(), exponent["stderr"].as_f64().unwrap());
     assert!(n + 2.0 * sd < 1.5, "exponent {n} +- {sd}: eq 2.23's 1.5 not excluded");
 }
+
+/// Chassagne et al. 2023 case 1 fitted on its two DEM seeds (100 s each, a seed scatter
+/// several times smaller than case 14's): g0's a, exponent and phi_rlp fitted jointly
+/// leave phi and u_p more than 3x the scatter away and chi^2 more than ten times its
+/// degrees of freedom. What remains is the form of the model (the DEM's shoulder of phi
+/// near 0.28), not a constant: the calibration measures it rather than removing it.
+#[test]
+fn case_1_keeps_a_misfit_no_constant_of_g0_removes() {
+    let d = tmp_dir("calibrate_case01");
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/chassagne2023/calibrate_case01.toml");
+    let o = saltus(&["calibrate", file.to_str().unwrap(), "--out", d.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("calibration.json")).unwrap()).unwrap();
+    assert_eq!(j["optimiser"]["converged"], true, "{}", j["optimiser"]);
+    let (chi2, chi2_start, dof) = (
+        j["misfit"]["chi2"].as_f64().unwrap(),
+        j["misfit"]["chi2_start"].as_f64().unwrap(),
+        j["misfit"]["dof"].as_f64().unwrap(),
+    );
+    assert!(chi2 < chi2_start && chi2 > 10.0 * dof, "chi2 {chi2_start} -> {chi2} on {dof} dof");
+    for t in j["misfit"]["optimum"].as_array().unwrap().iter().filter(|t| t["term"] != "qs_star") {
+        let r = t["ratio"].as_f64().unwrap();
+        assert!(r > 3.0, "{}: {r}x the scatter at the optimum", t["term"]);
+    }
+}
