@@ -174,7 +174,7 @@ impl Default for RadialDistribution {
 
 impl RadialDistribution {
     /// Coefficient a of the divergent term at interparticle friction `mu_p`, g0 = g0_CS +
-    /// a x with x the [`RadialDistribution::regressor`] (0 for Carnahan-Starling, 1 for
+    /// a x with x the [`RadialDistribution::regressor`] (0 for Carnahan-Starling, whose regressor is eq 3.2's; 1 for
     /// Torquato's, whose divergent part is the regressor itself).
     pub fn coefficient_a(&self, mu_p: f64) -> f64 {
         match self {
@@ -188,11 +188,14 @@ impl RadialDistribution {
 
     /// The regressor x of g0 = g0_CS + a x: phi^2 / (phi_max - phi)^n of the
     /// Chialvo-Sundaresan forms (n = 3/2 but for the power form, eq 3.2's
-    /// [`friction_regressor`]), Torquato's g0 - g0_CS; 0 for Carnahan-Starling.
+    /// [`friction_regressor`]), Torquato's g0 - g0_CS. Carnahan-Starling is eq 3.2 with
+    /// a = 0, so its regressor is eq 3.2's: a measured g0 read against it gives the a that
+    /// eq 3.2 would need, which a zero regressor would leave undefined.
     pub fn regressor(&self, phi: f64, phi_max: f64) -> f64 {
         match self {
-            Self::CarnahanStarling {} => 0.0,
-            Self::ChialvoSundaresan(_) | Self::ChialvoSundaresanFriction(_) => friction_regressor(phi, phi_max),
+            Self::CarnahanStarling {} | Self::ChialvoSundaresan(_) | Self::ChialvoSundaresanFriction(_) => {
+                friction_regressor(phi, phi_max)
+            }
             Self::ChialvoSundaresanPower(c) => phi * phi / (phi_max - phi).powf(c.exponent),
             Self::Torquato(c) => torquato(phi, phi_max, c.phi_f) - carnahan_starling(phi),
         }
@@ -303,6 +306,10 @@ mod tests {
         let g = RadialDistribution::Torquato(TorquatoG0::default());
         assert_eq!(g.g0(0.0, 0.635, 0.4), 1.0);
         assert_eq!(g.regressor(0.3, 0.635), 0.0);
+        // Carnahan-Starling reads a measured g0 against eq 3.2's friction term
+        let cs = RadialDistribution::CarnahanStarling {};
+        assert_eq!(cs.regressor(0.4, 0.635), friction_regressor(0.4, 0.635));
+        assert_eq!(cs.coefficient_a(0.4), 0.0);
     }
 
     proptest! {
