@@ -98,7 +98,13 @@ fn string_options_are_listed_with_their_allowed_values() {
     assert_eq!(allowed("k_omega", "wall"), ["smooth", "rough"]);
     assert_eq!(
         allowed("frictional_collisional", "g0.type"),
-        ["carnahan_starling", "chialvo_sundaresan", "chialvo_sundaresan_friction"]
+        [
+            "carnahan_starling",
+            "chialvo_sundaresan",
+            "chialvo_sundaresan_friction",
+            "chialvo_sundaresan_power",
+            "torquato"
+        ]
     );
     assert_eq!(find("mixing_length", "form")["default"], "li_sawamoto");
 }
