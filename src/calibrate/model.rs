@@ -249,6 +249,13 @@ impl Problem {
             Fit { residuals: Vec::new(), chi_scale: Vec::new(), ratios: Vec::new(), rms: Vec::new(), chi2: 0.0 };
         for term in &self.reference.profiles {
             let (z, v) = (shaped.get("z")?, shaped.get(&term.name)?);
+            let held;
+            let v = if term.name == "u_p" {
+                held = velocity_of_grains(shaped.get("phi")?, v);
+                &held[..]
+            } else {
+                v
+            };
             let n = term.z.len() as f64;
             let c = seeds * term.independent;
             let scale = (weight(&term.name) * c / n).sqrt() / term.scatter;
@@ -321,5 +328,43 @@ impl Problem {
     /// The calibrate file, for messages.
     pub fn file(&self) -> &Path {
         &self.cal.file
+    }
+}
+
+/// Volume fraction below which a model cell holds no grains: far below a suspension's
+/// and below one grain in any DEM slice; the two-fluid column's empty cells sit at 1e-300.
+const PHI_EMPTY: f64 = 1e-9;
+
+/// `u_p` where the column holds grains, and above them the velocity of the highest cell
+/// that does: an empty cell's particle velocity is not a velocity of grains (in a dry
+/// column it is the free fall of nothing, hundreds of m/s after seconds), and the phi term
+/// already counts the grains the model lacks there.
+fn velocity_of_grains(phi: &[f64], u_p: &[f64]) -> Vec<f64> {
+    let mut last = None;
+    let held: Vec<Option<f64>> = phi
+        .iter()
+        .zip(u_p)
+        .map(|(&f, &u)| {
+            if f > PHI_EMPTY {
+                last = Some(u);
+            }
+            last
+        })
+        .collect();
+    // below the lowest cell with grains (none in a column with a bed) the first one's
+    let first = held.iter().flatten().next().copied();
+    held.into_iter().zip(u_p).map(|(h, &u)| h.or(first).unwrap_or(u)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::velocity_of_grains;
+
+    #[test]
+    fn an_empty_cell_takes_the_velocity_of_the_grains_below() {
+        let phi = [0.0, 0.5, 0.3, 1e-300, 0.0, 1e-3];
+        let u = [7.0, 0.1, 0.4, 50.0, 90.0, 0.6];
+        assert_eq!(velocity_of_grains(&phi, &u), [0.1, 0.1, 0.4, 0.4, 0.4, 0.6]);
+        assert_eq!(velocity_of_grains(&[0.0, 0.0], &[1.0, 2.0]), [1.0, 2.0]);
     }
 }

@@ -10,6 +10,11 @@
 //! seed scatters at least by its time-averaging error; two seeds can agree far closer by
 //! chance); one run: its own standard error; data: `qs_star` with `scatter`. A `scatter`
 //! given in the file replaces the runs' own.
+//!
+//! A run's rate enters as its qs (m^2/s) on the base scene's scale sqrt((s - 1) g d^3),
+//! not as the qs* of its own summary: a reference run in another fluid than the model (a
+//! dry DEM, whose summary divides by the density contrast of an unused fluid, against a
+//! two-fluid column in air) is compared by its transport rate.
 
 use std::path::Path;
 
@@ -199,12 +204,21 @@ pub fn load(cal: &Calibration, scene: &Scene) -> anyhow::Result<Reference> {
         reference.profiles.push(term(name, &keep, &z, mean, sd.clone(), scatter, ell)?);
     }
     if wants("qs_star") {
-        let q: Vec<f64> = runs.iter().filter_map(|(_, s)| s.qs_star).collect();
-        if q.len() != n {
-            return Err(refuse("reference.runs".into(), "a run's summary has no qs_star".into()));
+        let depth = scene.domain.water_depth;
+        let scale = saltus_solvers::output::TransportScales::new(scene, scene.particles.density, d, depth).qs;
+        if !(scale > 0.0 && scale.is_finite()) {
+            return Err(refuse(
+                "misfit.terms".into(),
+                "qs_star: the base scene has no transport scale (no gravity or no density contrast)".into(),
+            ));
         }
+        let q: Vec<f64> = runs.iter().filter_map(|(_, s)| s.qs).map(|q| q / scale).collect();
+        if q.len() != n {
+            return Err(refuse("reference.runs".into(), "a run's summary has no qs".into()));
+        }
+        let stderr = |s: &Summary| s.qs_stderr.map(|e| e / scale);
         let (mean, sd) = mean_sd(&q);
-        let own = runs[0].1.qs_star_stderr;
+        let own = stderr(&runs[0].1);
         let scatter = match (given("qs_star"), n, own) {
             (Some(s), _, _) => s,
             (None, 1, Some(e)) => e,
@@ -217,7 +231,7 @@ pub fn load(cal: &Calibration, scene: &Scene) -> anyhow::Result<Reference> {
             // a seed's scatter is at least its own time-averaging error: with few seeds
             // their sample deviation can fall far below it by chance
             (None, _, _) => {
-                let errors: Vec<f64> = runs.iter().filter_map(|(_, s)| s.qs_star_stderr).collect();
+                let errors: Vec<f64> = runs.iter().filter_map(|(_, s)| stderr(s)).collect();
                 let floor = if errors.is_empty() {
                     0.0
                 } else {
