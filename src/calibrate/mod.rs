@@ -346,7 +346,7 @@ impl CalibrationReport {
             line(&self.optimum_terms)
         ));
         s.push_str(&format!(
-            "chi2 {:.4} -> {:.4} ({} dof); {}; {} model runs ({} to the optimum), {:.1} CPU-s, {:.1} s wall\n",
+            "chi2 {:.4} -> {:.4} ({:.1} dof); {}; {} model runs ({} to the optimum), {:.1} CPU-s, {:.1} s wall\n",
             self.chi2_start,
             self.chi2,
             self.dof,
