@@ -33,6 +33,7 @@ from . import _native, _study
 from ._native import RunError, SceneError
 from ._study import CalibrationResult, CompareResult, SweepResult, calibrate, check_calibration, compare, sweep
 from . import closures as _closures
+from .posterior import PosteriorResult, posterior
 from .closures import register_fluctuation, register_kinetic_theory, register_mixing_length, register_rheology
 
 __all__ = [
@@ -42,6 +43,8 @@ __all__ = [
     "calibrate",
     "check_calibration",
     "CalibrationResult",
+    "posterior",
+    "PosteriorResult",
     "sweep",
     "SweepResult",
     "check",

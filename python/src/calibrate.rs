@@ -47,3 +47,86 @@ pub fn calibrate<'py>(
     d.set_item("json", out.join(saltus::calibrate::JSON).display().to_string())?;
     Ok(d)
 }
+
+/// A calibrate file's misfit as a function of its free constants, for samplers that need
+/// chi^2 at points of their choosing (the posterior of docs/calibration.md). Each call
+/// runs the model once, warm from the anchor's state, and releases the GIL while it runs,
+/// so that a thread pool evaluates several points at once; the value at a point does not
+/// depend on the order of the calls.
+#[pyclass(module = "saltus._native", frozen)]
+pub struct Misfit {
+    problem: saltus::calibrate::Problem,
+}
+
+impl Misfit {
+    fn checked(&self, params: &[f64]) -> PyResult<()> {
+        let keys = &self.problem.cal.parameters;
+        if params.len() != keys.len() {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "params: {} values for the {} free constants {:?}",
+                params.len(),
+                keys.len(),
+                keys.iter().map(|p| p.key.as_str()).collect::<Vec<_>>()
+            )));
+        }
+        if let Some((p, v)) = keys.iter().zip(params).find(|(_, v)| !v.is_finite()) {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!("params: `{}` = {v} is not finite", p.key)));
+        }
+        Ok(())
+    }
+}
+
+#[pymethods]
+impl Misfit {
+    /// Load `file` (and `set`, as `saltus.calibrate`'s), its base scene and its reference.
+    #[new]
+    #[pyo3(signature = (file, set=None))]
+    fn new(py: Python<'_>, file: PathBuf, set: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+        let set = overrides(set)?;
+        let problem = py
+            .detach(|| saltus::calibrate::load(&file, &set).and_then(saltus::calibrate::Problem::new))
+            .map_err(|e| SceneError::new_err(saltus::describe(&e)))?;
+        Ok(Misfit { problem })
+    }
+
+    /// The free constants' keys, in the file's order.
+    #[getter]
+    fn keys(&self) -> Vec<String> {
+        self.problem.cal.parameters.iter().map(|p| p.key.clone()).collect()
+    }
+
+    /// Each constant's `[low, high]`.
+    #[getter]
+    fn bounds(&self) -> Vec<[f64; 2]> {
+        self.problem.cal.parameters.iter().map(|p| p.bounds).collect()
+    }
+
+    /// The start values (the file's `start` or the base scene's).
+    #[getter]
+    fn start(&self) -> Vec<f64> {
+        self.problem.start.clone()
+    }
+
+    /// Make the state of the run at `params` the start of every later call.
+    fn anchor(&self, py: Python<'_>, params: Vec<f64>) -> PyResult<()> {
+        self.checked(&params)?;
+        py.detach(|| self.problem.anchor(&params));
+        Ok(())
+    }
+
+    /// chi^2 at `params` (the sum calibrate minimises with unit weights: the statistical
+    /// model's, priors included); +inf outside the bounds and where the run fails or gives
+    /// no finite misfit, so that a sampler rejects the point.
+    fn chi2(&self, py: Python<'_>, params: Vec<f64>) -> PyResult<f64> {
+        self.checked(&params)?;
+        let inside = self.problem.cal.parameters.iter().zip(&params).all(|(p, v)| *v > p.bounds[0] && *v < p.bounds[1]);
+        if !inside {
+            return Ok(f64::INFINITY);
+        }
+        let chi2 = py.detach(|| {
+            let report = self.problem.run(&params).ok()?;
+            self.problem.fit(&params, &report).map(|f| f.chi2)
+        });
+        Ok(chi2.filter(|c| c.is_finite()).unwrap_or(f64::INFINITY))
+    }
+}
