@@ -41,7 +41,11 @@ pub fn profiles(problem: &Problem, start: &RunReport, optimum: &RunReport, png: 
     curves.extend(bands.iter().map(|(l, p)| (l.clone(), p as &dyn Columns)));
     let references: Vec<Reference> =
         tables.iter().map(|table| Reference { label: "reference (mean)", table }).collect();
-    let z = if r.align { ", z from the bed surface" } else { "" };
+    let z = match (&r.data_bed, r.align) {
+        (Some(_), _) => ", the run's bed surface on the data's",
+        (None, true) => ", z from the bed surface",
+        (None, false) => "",
+    };
     let title = format!("start, optimum and reference{z}");
     plot::draw_columns(&title, &[PHI_PANEL, U_P_PANEL], &curves, &references, Some((lo - pad, hi + pad)), png)?;
     Ok(png.to_path_buf())

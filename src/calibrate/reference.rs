@@ -68,12 +68,25 @@ pub struct Reference {
     pub align: bool,
     /// the seeds' own shaped profiles (z, phi, u_p), for the figure
     pub members: Vec<Profiles>,
+    /// the data's phi profile (z, phi) whose bed surface an aligned model is shifted onto
+    pub data_bed: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 impl Reference {
     /// The model's profile `p` shaped as the reference's are (smoothed, aligned); `None`
     /// when it cannot be (no z, phi, u_p; no flux to align on).
     pub fn shape(&self, p: &Profiles) -> Option<Profiles> {
+        if let Some((dz, dphi)) = &self.data_bed {
+            // data: the run shifted rigidly so that its bed surface sits on the data's, as
+            // the compare table's bed-aligned differences are taken
+            let (z, phi) = (p.get("z")?, p.get("phi")?);
+            let shift = saltus_solvers::bed_aligned::shift(z, phi, dz, dphi)?;
+            let mut out = p.clone();
+            if let Some((_, v)) = out.columns.iter_mut().find(|(n, _)| n == "z") {
+                v.iter_mut().for_each(|z| *z -= shift);
+            }
+            return Some(out);
+        }
         if self.h_g > 0.0 || self.align {
             prepared(p, self.h_g, self.align)
         } else {
@@ -107,11 +120,19 @@ pub fn load(cal: &Calibration, scene: &Scene) -> anyhow::Result<Reference> {
     let d = scene.particles.diameter;
     let h_g = spec.smooth.unwrap_or(0.0) * d;
     let ell = spec.correlation_length.unwrap_or(1.0).max(spec.smooth.unwrap_or(0.0)) * d;
+    let bed = spec.bed_depth.unwrap_or(0.0) * d;
     let wants = |t: &str| cal.misfit.terms.iter().any(|m| m == t);
     let given = |t: &str| spec.scatter.get(t).copied();
     let refuse = |key: String, m: String| key_error(&cal.file, key, m);
-    let mut reference =
-        Reference { profiles: Vec::new(), rate: None, seeds: 1, h_g, align: spec.align, members: Vec::new() };
+    let mut reference = Reference {
+        profiles: Vec::new(),
+        rate: None,
+        seeds: 1,
+        h_g,
+        align: spec.align,
+        members: Vec::new(),
+        data_bed: None,
+    };
     if spec.data {
         let tables = crate::runner::load_reference(scene)
             .map_err(|e| refuse("reference.data".into(), format!("the base scene's reference data: {e:#}")))?;
@@ -129,7 +150,7 @@ pub fn load(cal: &Calibration, scene: &Scene) -> anyhow::Result<Reference> {
             let at = |c: &str, zi: f64| column(c).map(|(zc, fc)| interpolate(zc, fc, zi));
             let phi: Vec<f64> = z.iter().map(|&zi| at("phi", zi).unwrap_or(1.0)).collect();
             let u: Vec<f64> = z.iter().map(|&zi| at("u_p", zi).unwrap_or(1.0)).collect();
-            let keep = moving_rows(z, &phi, &u);
+            let keep = with_bed(&moving_rows(z, &phi, &u), z, bed);
             let keep: Vec<usize> = keep.into_iter().filter(|&k| v[k].is_finite()).collect();
             let scatter = given(name).ok_or_else(|| {
                 refuse(
@@ -146,6 +167,21 @@ pub fn load(cal: &Calibration, scene: &Scene) -> anyhow::Result<Reference> {
             let s = given("qs_star")
                 .ok_or_else(|| refuse("reference.scatter.qs_star".into(), "a published qs* needs its error".into()))?;
             reference.rate = Some(RateTerm { mean: q, scatter: s });
+        }
+        if spec.align {
+            let (z, phi) = tables.iter().find_map(|(_, t)| Some((t.get("z")?, t.get("phi")?))).ok_or_else(|| {
+                refuse(
+                    "reference.align".into(),
+                    "no reference file of the base scene has `phi`, whose bed surface the model is aligned on".into(),
+                )
+            })?;
+            if saltus_solvers::bed_aligned::half_bed_level(z, phi).is_none() {
+                return Err(refuse(
+                    "reference.align".into(),
+                    "the data's phi has no bed surface (no level where it falls to half its bottom value)".into(),
+                ));
+            }
+            reference.data_bed = Some((z.to_vec(), phi.to_vec()));
         }
         return Ok(reference);
     }
@@ -201,7 +237,7 @@ pub fn load(cal: &Calibration, scene: &Scene) -> anyhow::Result<Reference> {
                 format!("the runs' scatter of {name} over the moving layer is {scatter} (identical runs?): give it"),
             ));
         }
-        reference.profiles.push(term(name, &keep, &z, mean, sd.clone(), scatter, ell)?);
+        reference.profiles.push(term(name, &with_bed(&keep, &z, bed), &z, mean, sd.clone(), scatter, ell)?);
     }
     if wants("qs_star") {
         let depth = scene.domain.water_depth;
@@ -250,6 +286,17 @@ pub fn load(cal: &Calibration, scene: &Scene) -> anyhow::Result<Reference> {
     }
     reference.members = runs.into_iter().map(|(p, _)| p).collect();
     Ok(reference)
+}
+
+/// `keep` (rows in ascending z) and the rows of `z` within `depth` below its lowest.
+fn with_bed(keep: &[usize], z: &[f64], depth: f64) -> Vec<usize> {
+    let Some(&first) = keep.first() else {
+        return Vec::new();
+    };
+    let bottom = z[first] - depth;
+    let mut rows: Vec<usize> = (0..z.len()).filter(|&k| z[k] >= bottom && z[k] < z[first]).collect();
+    rows.extend_from_slice(keep);
+    rows
 }
 
 fn term(

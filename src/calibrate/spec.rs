@@ -72,7 +72,8 @@ pub struct ReferenceSpec {
     /// Fry et al. 2024 eq-11 Gaussian of h_g = `smooth` grain diameters (runs only)
     #[serde(default)]
     pub smooth: Option<f64>,
-    /// each profile from its own bed surface (runs only)
+    /// each run's profiles from its own bed surface; with data, the model shifted so that
+    /// its bed surface (phi at half its bed value) sits on the data's
     #[serde(default)]
     pub align: bool,
     /// the scatter of each term, in its units, where the reference cannot give it (one
@@ -83,6 +84,11 @@ pub struct ReferenceSpec {
     /// profile term counts one independent value per this length of its layer
     #[serde(default)]
     pub correlation_length: Option<f64>,
+    /// grain diameters of the bed below the moving layer whose rows the profile terms take
+    /// in as well (default 0): a model whose bed creeps or packs where the reference's
+    /// rests is then seen; the scatter stays that of the moving layer
+    #[serde(default)]
+    pub bed_depth: Option<f64>,
 }
 
 /// Which terms the misfit sums and how each weighs.
@@ -209,8 +215,8 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Calibration> {
         (false, true) => return Err(key_error(path, "reference", "either runs or data, not both")),
         _ => {}
     }
-    if r.data && (r.smooth.is_some() || r.align) {
-        return Err(key_error(path, "reference", "smooth and align shape the profiles of runs, not data"));
+    if r.data && r.smooth.is_some() {
+        return Err(key_error(path, "reference.smooth", "smooth shapes the profiles of runs, not data"));
     }
     if r.qs_star.is_some() && !r.data {
         return Err(key_error(path, "reference.qs_star", "a published qs* goes with data = true; runs give their own"));
@@ -227,6 +233,9 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Calibration> {
     }
     if let Some(l) = r.correlation_length.filter(|l| !(finite_positive(*l) && *l <= 1e3)) {
         return Err(key_error(path, "reference.correlation_length", format!("{l}: grain diameters, > 0 and <= 1000")));
+    }
+    if let Some(b) = r.bed_depth.filter(|b| !(b.is_finite() && *b >= 0.0 && *b <= 1e3)) {
+        return Err(key_error(path, "reference.bed_depth", format!("{b}: grain diameters, >= 0 and <= 1000")));
     }
     for (k, v) in &r.scatter {
         if !TERMS.contains(&k.as_str()) {
