@@ -188,3 +188,27 @@ fn a_restart_continues_in_the_folder_it_restarts_from() {
     let again = saltus(&["run", own.to_str().unwrap(), "--restart", o, "-q"]);
     assert!(again.status.success(), "{}", stderr(&again));
 }
+
+/// `domain.initial_profiles` refused alike by `check` and `run`, naming the key: a file
+/// that does not exist, one without `u_f`, profiles with sediment for a clear-fluid scene,
+/// a DEM scene, and a two-equation turbulence closure whose k and omega no profile holds.
+#[test]
+fn initial_profiles_that_cannot_start_the_column_are_refused_alike() {
+    let stokes = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/verification/stokes_layer.toml");
+    let d = tmp_dir("initial_profiles_files");
+    let no_uf = write(&d, "no_uf.csv", "z,u_p\n0,0.1\n0.001,0.2\n");
+    let sediment = write(&d, "sediment.csv", "z,u_f,phi\n0,0.1,0.3\n0.001,0.2,0.3\n");
+    let key = "domain.initial_profiles";
+    let set = |p: &Path| format!("domain.initial_profiles=\"{}\"", p.display());
+    let e = refused_alike("ip_missing", &stokes, &[&set(&d.join("nowhere.csv"))], key);
+    assert!(e.contains("nowhere.csv"), "{e}");
+    let e = refused_alike("ip_no_uf", &stokes, &[&set(&no_uf)], key);
+    assert!(e.contains("u_f"), "{e}");
+    let e = refused_alike("ip_sediment", &stokes, &[&set(&sediment)], key);
+    assert!(e.contains("sediment"), "{e}");
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/chassagne2023/case01.toml");
+    let good = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/verification/stokes_layer_t0.csv");
+    refused_alike("ip_dem", &case, &["solver.type=lagrangian", &set(&good)], key);
+    let e = refused_alike("ip_k_omega", &case, &["closures.turbulence={type=\"k_omega\"}", &set(&good)], key);
+    assert!(e.contains("k and omega"), "{e}");
+}

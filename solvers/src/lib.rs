@@ -64,7 +64,20 @@ pub fn resolve(scene: &Scene) -> Result<Box<dyn Stepper + '_>, Error> {
     Ok(match scene.solver.kind {
         SolverKind::Eulerian => {
             let cfg = eulerian::Config::from_scene(scene)?;
-            Box::new(eulerian::Eulerian::new(scene, cfg)?)
+            let mut column = Box::new(eulerian::Eulerian::new(scene, cfg)?);
+            if let Some(csv) = &scene.domain.initial_profiles {
+                let key = |message: String| Error::Key {
+                    file: scene.path.clone(),
+                    key: saltus_core::scene::initial::KEY.into(),
+                    message,
+                };
+                let mut p = Profiles::default();
+                for (name, values) in saltus_core::scene::initial::read(std::path::Path::new(csv), &scene.path)? {
+                    p.push(&name, values);
+                }
+                column.warm_start(&WarmStart::Profiles(p)).map_err(|m| key(format!("{csv}: {m}")))?;
+            }
+            column
         }
         SolverKind::Lagrangian => {
             let cfg = lagrangian::Config::from_scene(scene)?;

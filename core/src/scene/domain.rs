@@ -72,6 +72,10 @@ pub struct Domain {
     /// lid velocity (m/s) when `top = "lid"`
     #[serde(default)]
     pub lid_velocity: f64,
+    /// a profiles CSV (z, u_f; optional phi, u_p, theta_g) the Eulerian column starts from
+    /// instead of rest, relative to the scene; absolute once loaded
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial_profiles: Option<String>,
 }
 
 fn unit_stretching() -> f64 {
@@ -90,6 +94,7 @@ impl Default for Domain {
             stretching: 1.0,
             top: Top::FreeSurface,
             lid_velocity: 0.0,
+            initial_profiles: None,
         }
     }
 }

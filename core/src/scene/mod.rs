@@ -16,6 +16,7 @@ mod closures_file;
 mod consistency;
 mod domain;
 mod forcing;
+pub mod initial;
 mod lagrangian;
 mod overrides;
 mod presets;
@@ -358,6 +359,18 @@ impl Scene {
         let dir = self.path.parent().map(Path::to_path_buf).unwrap_or_default();
         for r in &mut self.reference {
             r.file = absolute(&dir, &r.file);
+        }
+        if let Some(csv) = &mut self.domain.initial_profiles {
+            if self.solver.kind == SolverKind::Lagrangian {
+                return Err(Error::Key {
+                    file: self.path.clone(),
+                    key: initial::KEY.into(),
+                    message: "the Eulerian column's start; the DEM starts from rest or from another run's grains"
+                        .into(),
+                });
+            }
+            *csv = absolute(&dir, csv);
+            initial::read(Path::new(csv.as_str()), &self.path)?;
         }
         Ok(())
     }

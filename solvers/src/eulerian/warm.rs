@@ -23,8 +23,10 @@ impl Eulerian<'_> {
     /// onto this grid, the column above the profiles' top filled with their top values.
     /// phi is scaled so that the column holds the sediment of this scene (its
     /// bed_phi x bed_height), so that a neighbour with another inventory does not change
-    /// this one's. A two-equation turbulence closure's k and omega are not in the
-    /// profiles: refused.
+    /// this one's; a scene without sediment takes clear fluid. A profile without phi is
+    /// clear fluid, without u_p the grains move with the fluid, without theta_g the
+    /// scene's own temperature stays. A two-equation turbulence closure's k and omega are
+    /// not in the profiles: refused.
     pub(super) fn warm_start_from(&mut self, p: &Profiles) -> Result<(), String> {
         if self.s.kw.is_some() {
             return Err("the k and omega of a two-equation turbulence closure are not in the profiles".into());
@@ -34,19 +36,20 @@ impl Eulerian<'_> {
         if !ok {
             return Err("the profiles' `z` is not an increasing column of at least two cells".into());
         }
-        let column = |name: &str| -> Result<&[f64], String> {
-            let c = p.get(name).ok_or_else(|| format!("the profiles have no `{name}` column"))?;
+        let column = |name: &str| -> Result<Option<&[f64]>, String> {
+            let Some(c) = p.get(name) else { return Ok(None) };
             if c.len() != z.len() || !c.iter().all(|v| v.is_finite()) {
                 return Err(format!("the profiles' `{name}` is not {} finite numbers", z.len()));
             }
-            Ok(c)
+            Ok(Some(c))
         };
-        let (phi, uf, up) = (column("phi")?, column("u_f")?, column("u_p")?);
-        let temp = if self.kinetic { Some(column("theta_g")?) } else { None };
+        let uf = column("u_f")?.ok_or("the profiles have no `u_f` column")?;
+        let (phi, up) = (column("phi")?, column("u_p")?.unwrap_or(uf));
+        let temp = if self.kinetic { column("theta_g")? } else { None };
         let centres = self.op.grid().centres().to_vec();
         let dz = self.op.grid().dz();
         for (i, &zc) in centres.iter().enumerate() {
-            self.s.phi[i] = interpolate(z, phi, zc).max(0.0);
+            self.s.phi[i] = phi.map_or(0.0, |phi| interpolate(z, phi, zc).max(0.0));
             self.s.uf[i] = interpolate(z, uf, zc);
             self.s.up[i] = interpolate(z, up, zc);
             if let Some(t) = temp {
@@ -57,11 +60,17 @@ impl Eulerian<'_> {
             }
         }
         let mass = self.s.sediment_height(dz);
-        if mass.is_nan() || mass <= 0.0 || self.s.mass0 <= 0.0 {
-            return Err("the profiles hold no sediment, or the scene none".into());
+        let clear = self.s.mass0 <= 0.0;
+        if clear && mass > 0.0 {
+            return Err("the profiles hold sediment and the scene none".into());
         }
-        let scale = self.s.mass0 / mass;
-        self.s.phi.iter_mut().for_each(|v| *v *= scale);
+        if !clear {
+            if mass.is_nan() || mass <= 0.0 {
+                return Err("the profiles hold no sediment, or the scene none".into());
+            }
+            let scale = self.s.mass0 / mass;
+            self.s.phi.iter_mut().for_each(|v| *v *= scale);
+        }
         self.s.flux.iter_mut().for_each(|v| *v = 0.0);
         self.s.drift_flux.iter_mut().for_each(|v| *v = 0.0);
         self.evaluate().map_err(|b| format!("the warm state: {b}"))
