@@ -127,7 +127,7 @@ impl RunOutcome {
                     ),
                 })
             }
-            Ending::Steady | Ending::EndTime | Ending::MaxSteps | Ending::WallClock => None,
+            Ending::Steady | Ending::EndTime | Ending::TargetError | Ending::MaxSteps | Ending::WallClock => None,
         }
     }
 }
@@ -327,7 +327,7 @@ pub fn run_scene_with(
         _ if scene.closures.failure().is_some() => scene.closures.failure(),
         Ending::Unstable(b) => Some(format!("unstable at {b}")),
         Ending::Interrupted => Some(format!("interrupted at t = {} s", decimal(run.report.summary.sim_time_s))),
-        Ending::Steady | Ending::EndTime | Ending::MaxSteps | Ending::WallClock => None,
+        Ending::Steady | Ending::EndTime | Ending::TargetError | Ending::MaxSteps | Ending::WallClock => None,
     };
     Ok(RunOutcome {
         ending: Some(run.ending),

@@ -170,6 +170,16 @@ pub struct Summary {
     /// its standard error over the averaged periods (m^2), with two periods or more
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub net_transport_stderr: Option<f64>,
+    /// DEM runs with a fluid: the start (s) of the averaging window MSER-5 finds in the
+    /// run's own transport rate (`docs/lagrangian.md`); absent while it is still climbing
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub window_start_s: Option<f64>,
+    /// the transport rate over that window (m^2/s)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub qs_window: Option<f64>,
+    /// its standard error (m^2/s), blocks of batch means chosen from their correlation
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub qs_window_stderr: Option<f64>,
     /// DEM runs: neighbour-list builds of the whole run, the deposition's included (per
     /// step: over `total_steps`)
     #[serde(default, skip_serializing_if = "Option::is_none")]

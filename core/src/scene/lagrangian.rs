@@ -231,6 +231,10 @@ pub struct LagrangianSettings {
     pub steady_windows: usize,
     /// stop as soon as the run is steady
     pub stop_when_steady: bool,
+    /// stop when the relative standard error of the transport rate over the averaging
+    /// window that MSER-5 finds falls to this (a fraction in (0, 1]), or at end_time
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub target_error: Option<f64>,
     /// threads (0: all cores)
     pub threads: usize,
     /// period of VTK particle snapshots (s); 0: none
@@ -275,6 +279,7 @@ impl Default for LagrangianSettings {
             steady_tolerance: 0.05,
             steady_windows: 3,
             stop_when_steady: false,
+            target_error: None,
             threads: 0,
             vtk_period: 0.0,
             max_steps: 1_000_000_000_000,
@@ -370,6 +375,16 @@ impl LagrangianSettings {
         check(f, &p("steady_window"), self.steady_window, ParamRange::open_closed(0.0, MAX_TIME))?;
         check(f, &p("steady_tolerance"), self.steady_tolerance, ParamRange::closed(0.0, 1e6))?;
         check(f, &p("steady_windows"), self.steady_windows as f64, ParamRange::closed(1.0, 1e9))?;
+        if let Some(e) = self.target_error {
+            check(f, &p("target_error"), e, ParamRange::open_closed(0.0, 1.0))?;
+            if self.fluid == FluidMode::Off {
+                return Err(key_error(
+                    f,
+                    &p("target_error"),
+                    "the error is that of the transport rate, which a run without fluid does not measure",
+                ));
+            }
+        }
         check(f, &p("threads"), self.threads as f64, ParamRange::closed(0.0, 1024.0))?;
         check(f, &p("vtk_period"), self.vtk_period, ParamRange::closed(0.0, MAX_TIME))?;
         check(f, &p("max_steps"), self.max_steps as f64, ParamRange::closed(1.0, 1e15))?;

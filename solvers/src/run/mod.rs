@@ -103,6 +103,8 @@ pub enum Ending {
     Steady,
     /// the end time is reached
     EndTime,
+    /// the requested standard error of the answer is reached (the DEM's `target_error`)
+    TargetError,
     /// the step cap is reached
     MaxSteps,
     /// the observer asked to stop (Ctrl-C, a caller's budget)
@@ -120,6 +122,7 @@ impl Ending {
         match self {
             Ending::Steady => "steady",
             Ending::EndTime => "end_time",
+            Ending::TargetError => "target_error",
             Ending::MaxSteps => "max_steps",
             Ending::Interrupted => "interrupted",
             Ending::WallClock => "wall_clock",
@@ -133,7 +136,7 @@ impl Ending {
         match self {
             Ending::Unstable(b) => Some(b.to_string()),
             Ending::Interrupted => Some("interrupted before its end".into()),
-            Ending::Steady | Ending::EndTime | Ending::MaxSteps | Ending::WallClock => None,
+            Ending::Steady | Ending::EndTime | Ending::TargetError | Ending::MaxSteps | Ending::WallClock => None,
         }
     }
 

@@ -13,6 +13,7 @@
 //! run without fluid reports its granular temperature history instead of transport
 //! ([`Cooling`]), with Haff's law beside it for a homogeneous cooling scene.
 
+use crate::lagrangian::stats::truncation::Window;
 use crate::lagrangian::run::config::FluidMode;
 use crate::lagrangian::run::solver::Lagrangian;
 use crate::lagrangian::stats::cooling::Cooling;
@@ -81,6 +82,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
     let mobile = m.mobile();
     let flow_wall = clock.flow;
     let throughput = (flow_wall > 0.0).then(|| mobile as f64 * m.steps() as f64 / flow_wall);
+    let window = if fluid { m.truncation().window() } else { None };
     let summary = Summary {
         scene: scene.meta.name.clone(),
         solver: "lagrangian".into(),
@@ -117,6 +119,9 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
         rouse_number: rouse,
         net_transport: None,
         net_transport_stderr: None,
+        window_start_s: window.map(|w| w.start),
+        qs_window: window.and_then(|w| finite(w.mean)),
+        qs_window_stderr: window.and_then(|w| w.stderr).and_then(finite),
         neighbour_builds: Some(m.dem().list().builds),
         timing: None,
     };
@@ -174,11 +179,12 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
         ),
     };
     let steady = steady_sentence(m, fluid);
+    let window = window_sentence(m, fluid, window);
     let temperature = dry
         .map(|c| cooling_sentence(c, haff, m.time(), summary.granular_temperature.unwrap_or(0.0)))
         .unwrap_or_default();
     let text = format!(
-        "{}: {} after {} s of flow ({} DEM steps of {:.3e} s after {} of deposition, {} in all, {} neighbour-list builds, {} mobile particles, {samples} averaging samples) in {:.1} s wall time ({:.2e} particle-steps/s); {measured}; {steady}{temperature}",
+        "{}: {} after {} s of flow ({} DEM steps of {:.3e} s after {} of deposition, {} in all, {} neighbour-list builds, {} mobile particles, {samples} averaging samples) in {:.1} s wall time ({:.2e} particle-steps/s); {measured}; {window}; {steady}{temperature}",
         scene.label(),
         ending.name(),
         saltus_core::param::decimal(summary.sim_time_s),
@@ -192,6 +198,35 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
         throughput.unwrap_or(0.0),
     );
     RunReport { profiles: p, summary, text }
+}
+
+/// The averaging window MSER-5 finds in the run's transport rate, the rate over it and
+/// the stopping rule on a requested error.
+fn window_sentence(m: &Lagrangian<'_>, fluid: bool, window: Option<Window>) -> String {
+    if !fluid {
+        return "no averaging window found (a run without fluid does not measure its transport rate)".into();
+    }
+    let target = m.config().settings.numerics.target_error;
+    let rule = target.map_or_else(String::new, |t| format!("; target relative error {t}"));
+    match window {
+        None => format!("averaging window (MSER-5 on the transport rate): none yet, the rate has not levelled{rule}"),
+        Some(w) => {
+            let error = match (w.stderr, w.relative_error()) {
+                (Some(e), Some(r)) => format!(" +- {e:.4e} (relative {r:.2e})"),
+                _ => " (no standard error: too few blocks)".into(),
+            };
+            let level = w.geweke_z.map_or_else(
+                || "level: not tested (too few blocks)".to_string(),
+                |z| format!("Geweke z {z:.2} between its first 10 % and last 50 %"),
+            );
+            format!(
+                "averaging window (MSER-5 on the transport rate) from t = {} s: qs = {:.4e}{error} m^2/s over {} fluid updates, {level}{rule}",
+                saltus_core::param::decimal(w.start),
+                w.mean,
+                w.samples
+            )
+        }
+    }
 }
 
 /// The steady test as the run met it: criterion, windows, last change against the

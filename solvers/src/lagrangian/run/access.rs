@@ -95,6 +95,12 @@ impl Lagrangian<'_> {
     pub fn steady(&self) -> &Steady {
         &self.state.steady
     }
+
+    /// The batched transport rate of the flow: its averaging window (MSER-5) and the rate's
+    /// error over it.
+    pub fn truncation(&self) -> &crate::lagrangian::stats::truncation::Truncation {
+        &self.state.truncation
+    }
     /// The fluid column, when coupled.
     pub fn column(&self) -> Option<&FluidColumn> {
         self.state.column.as_ref()

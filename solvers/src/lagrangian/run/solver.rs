@@ -226,6 +226,7 @@ impl<'a> Lagrangian<'a> {
                 stats: Stats::new(cells),
                 granular: granular.then(|| GranularStats::new(cells)),
                 steady: Steady::new(s.numerics.steady_window, s.numerics.steady_tolerance, s.numerics.steady_windows),
+                truncation: Default::default(),
                 cell_volume: cfg.domain.length * cfg.domain.width * dz,
                 bed_surface: cfg.bed_surface(),
                 slip: SlipAverage::new(if slip_average { cells } else { 0 }),

@@ -16,6 +16,7 @@ use crate::lagrangian::engine::dem::Dem;
 use crate::lagrangian::stats::granular::GranularStats;
 use crate::lagrangian::stats::statistics::Stats;
 use crate::lagrangian::stats::steady::Steady;
+use crate::lagrangian::stats::truncation::Truncation;
 
 /// What the run is doing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -59,6 +60,10 @@ pub struct State {
     pub(crate) granular: Option<GranularStats>,
     /// the steady-state detector
     pub(crate) steady: Steady,
+    /// the transport rate of every fluid update in batches, for the averaging window and
+    /// the stopping rule on a requested error
+    #[serde(default)]
+    pub(crate) truncation: Truncation,
     /// slice volume A dz (m^3) of the column as fitted to the deposit
     pub(crate) cell_volume: f64,
     /// nominal bed surface above the column bottom (m), measured after the deposition

@@ -280,6 +280,7 @@ impl Lagrangian<'_> {
         self.check()?;
         let qs: f64 = self.state.sums.v[0].iter().sum::<f64>() / (self.state.cell_volume / self.state.field.dz);
         self.state.steady.add(self.state.time, qs);
+        self.state.truncation.add(self.state.time, qs);
         if self.state.time >= self.params.cfg.settings.numerics.stats_start {
             let tau_face: &[f64] = match &self.state.column {
                 Some(c) => c.shear_stress(),
@@ -363,8 +364,14 @@ impl Lagrangian<'_> {
                 Ok(None) => return None,
                 Ok(Some(false)) => {}
                 Ok(Some(true)) => {
-                    if self.params.cfg.settings.numerics.stop_when_steady && self.state.steady.is_steady() {
+                    let numerics = &self.params.cfg.settings.numerics;
+                    if numerics.stop_when_steady && self.state.steady.is_steady() {
                         return Some(Ending::Steady);
+                    }
+                    if let Some(target) = numerics.target_error {
+                        if self.state.truncation.due() && self.state.truncation.reached(target) {
+                            return Some(Ending::TargetError);
+                        }
                     }
                     return None;
                 }

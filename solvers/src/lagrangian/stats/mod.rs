@@ -8,3 +8,4 @@ pub mod cooling;
 pub mod granular;
 pub mod statistics;
 pub mod steady;
+pub mod truncation;
