@@ -25,8 +25,10 @@
 //! climbing slowly (the peer bedload case climbs for 80 s) can look level to it over a
 //! short series. The stopping rule therefore also asks that the means of the window's
 //! first 10 % and last 50 % agree, z = (mean_A - mean_B) / sqrt(se_A^2 + se_B^2) within
-//! [`GEWEKE_Z`], each error by blocking; where either part has too few blocks for an
-//! error the window does not pass.
+//! [`GEWEKE_Z`], each part's error from its own variance and the last half's
+//! statistical inefficiency (Geweke takes each part's spectral density at zero; a tenth of
+//! a window is too short for blocks of its own); without that inefficiency, no test and
+//! no stop.
 //!
 //! **The error over the window**: Flyvbjerg-Petersen blocking with Jonsson's test of the
 //! block length ([`super::blocking::Blocking`]) on the window's batch means, i.e. batch
@@ -195,23 +197,36 @@ impl Truncation {
     pub fn window(&self) -> Option<Window> {
         let (d, _) = self.truncation()?;
         let start = if d == 0 { self.first? } else { self.ends[d - 1] };
-        let part = |z: &[f64]| -> (Option<f64>, Option<f64>) {
-            let mut b = Blocking::new();
-            z.iter().for_each(|&x| b.add(x));
-            (b.mean(), b.estimate().ok().map(|e: BlockEstimate| e.stderr).filter(|e| e.is_finite()))
-        };
         let window = &self.means[d..];
-        let (mean, stderr) = part(window);
+        let mut b = Blocking::new();
+        window.iter().for_each(|&x| b.add(x));
+        let estimate = b.estimate().ok();
+        let stderr = estimate.map(|e: BlockEstimate| e.stderr).filter(|e| e.is_finite());
         let m = window.len();
-        let (a, b) = (part(&window[..m / 10]), part(&window[m - m / 2..]));
-        let geweke_z = match (a, b) {
-            ((Some(ma), Some(ea)), (Some(mb), Some(eb))) => {
+        // each part's error from its own variance and the statistical inefficiency of the
+        // last half (a tenth of a window is too short for blocks of its own; a trend
+        // through the whole window would pass for correlation and weaken the test)
+        let mut late = Blocking::new();
+        window[m - m / 2..].iter().for_each(|&x| late.add(x));
+        let inefficiency = late.estimate().ok().and_then(|e| e.inefficiency()).filter(|s| s.is_finite());
+        let part = |z: &[f64]| -> Option<(f64, f64)> {
+            let n = z.len() as f64;
+            if z.len() < 2 {
+                return None;
+            }
+            let mean = z.iter().sum::<f64>() / n;
+            let var = z.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+            Some((mean, (inefficiency? * var / n).sqrt()))
+        };
+        let geweke_z = match (part(&window[..m / 10]), part(&window[m - m / 2..])) {
+            (Some((ma, ea)), Some((mb, eb))) => {
                 let z = (ma - mb) / (ea * ea + eb * eb).sqrt();
                 z.is_finite().then_some(z)
             }
             _ => None,
         };
-        Some(Window { start, samples: m * self.size, mean: mean?, stderr, geweke_z })
+        let mean = b.mean()?;
+        Some(Window { start, samples: m * self.size, mean, stderr, geweke_z })
     }
 }
 
