@@ -13,10 +13,10 @@
 //! run without fluid reports its granular temperature history instead of transport
 //! ([`Cooling`]), with Haff's law beside it for a homogeneous cooling scene.
 
-use crate::lagrangian::stats::truncation::Window;
 use crate::lagrangian::run::config::FluidMode;
 use crate::lagrangian::run::solver::Lagrangian;
 use crate::lagrangian::stats::cooling::Cooling;
+use crate::lagrangian::stats::truncation::Window;
 use crate::output::{self, finite, Profiles, Summary};
 use crate::run::{Clock, Ending};
 use crate::RunReport;

@@ -96,7 +96,16 @@ pub struct Truncation {
 
 impl Default for Truncation {
     fn default() -> Self {
-        Self { size: BATCH, sum: 0.0, count: 0, means: Vec::new(), ends: Vec::new(), first: None, samples: 0, next_check: 0 }
+        Self {
+            size: BATCH,
+            sum: 0.0,
+            count: 0,
+            means: Vec::new(),
+            ends: Vec::new(),
+            first: None,
+            samples: 0,
+            next_check: 0,
+        }
     }
 }
 
