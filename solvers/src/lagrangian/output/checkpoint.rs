@@ -14,18 +14,28 @@ fn options() -> impl bincode::Options {
     bincode::DefaultOptions::new()
 }
 
-/// Append `state` to `out`.
+/// Append `state` to `out`, then its batched transport rate (the averaging window's
+/// series), which a checkpoint of an earlier program lacks.
 pub(crate) fn save(state: &State, out: &mut Vec<u8>) -> Result<(), String> {
-    options().serialize_into(out, state).map_err(|e| format!("cannot encode the DEM state: {e}"))
+    options().serialize_into(&mut *out, state).map_err(|e| format!("cannot encode the DEM state: {e}"))?;
+    options().serialize_into(out, &state.truncation).map_err(|e| format!("cannot encode the DEM state: {e}"))
 }
 
 /// The state `save` wrote, after checking that its sizes fit together: a state that does
 /// not is refused, never indexed.
 pub(crate) fn decode(bytes: &[u8]) -> Result<State, String> {
-    let s: State = options()
+    let mut rest = bytes;
+    let mut s: State = options()
         .with_limit(bytes.len() as u64)
-        .deserialize(bytes)
+        .deserialize_from(&mut rest)
         .map_err(|e| format!("cannot decode the DEM state: {e}"))?;
+    // without the series (a checkpoint written before it was kept) the window starts afresh
+    if !rest.is_empty() {
+        s.truncation = options()
+            .with_limit(rest.len() as u64)
+            .deserialize(rest)
+            .map_err(|e| format!("cannot decode the DEM state's transport-rate series: {e}"))?;
+    }
     if !s.fits() {
         return Err(format!(
             "the DEM state's arrays do not fit together ({} particles, {} fluid cells)",

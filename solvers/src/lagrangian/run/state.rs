@@ -61,8 +61,10 @@ pub struct State {
     /// the steady-state detector
     pub(crate) steady: Steady,
     /// the transport rate of every fluid update in batches, for the averaging window and
-    /// the stopping rule on a requested error
-    #[serde(default)]
+    /// the stopping rule on a requested error; saved after the state
+    /// ([`crate::lagrangian::output::checkpoint`]), so that a checkpoint written before it
+    /// was kept still reads
+    #[serde(skip)]
     pub(crate) truncation: Truncation,
     /// slice volume A dz (m^3) of the column as fitted to the deposit
     pub(crate) cell_volume: f64,
