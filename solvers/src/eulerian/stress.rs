@@ -93,11 +93,11 @@ impl Eulerian<'_> {
             };
         }
         kt.coefficients_batch(&sc.phi_c, salt.then_some(&sc.salt[..]), &mut self.co.coef);
-        kt.coefficients_batch(&sc.phi_h, None, &mut sc.coef_h);
+        kt.pressure_coefficient_batch(&sc.phi_h, &mut sc.f1_h);
         for i in 0..n {
             let phi = sc.phi_c[i];
             let co = self.co.coef[i];
-            let f1p = if phi + DPHI < phi_max { (sc.coef_h[i].f1 - co.f1) / DPHI } else { co.f1 / phi.max(1e-12) };
+            let f1p = if phi + DPHI < phi_max { (sc.f1_h[i] - co.f1) / DPHI } else { co.f1 / phi.max(1e-12) };
             self.co.f1_slope[i] = f1p.max(0.0);
             let st = sc.salt[i].sqrt_t;
             self.co.eta_kin[i] = kt.shear_viscosity(&co, c.rho_p, c.d, st);

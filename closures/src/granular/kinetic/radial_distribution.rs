@@ -204,11 +204,19 @@ impl RadialDistribution {
     /// g0 at `phi` for maximum packing `phi_max` and interparticle friction `mu_p`.
     #[inline]
     pub fn g0(&self, phi: f64, phi_max: f64, mu_p: f64) -> f64 {
+        self.g0_with_a(phi, phi_max, self.coefficient_a(mu_p))
+    }
+
+    /// g0 at `phi` with the coefficient `a` = [`RadialDistribution::coefficient_a`] given:
+    /// a(mu_p) depends on the parameters only, so that a batch over a column computes its
+    /// tanh once (the same value bit for bit as [`RadialDistribution::g0`]).
+    #[inline]
+    pub fn g0_with_a(&self, phi: f64, phi_max: f64, a: f64) -> f64 {
         match self {
             Self::CarnahanStarling {} => carnahan_starling(phi),
             Self::ChialvoSundaresanPower(c) => chialvo_sundaresan_power(phi, phi_max, c.a, c.exponent),
             Self::Torquato(c) => torquato(phi, phi_max, c.phi_f),
-            _ => chialvo_sundaresan(phi, phi_max, self.coefficient_a(mu_p)),
+            _ => chialvo_sundaresan(phi, phi_max, a),
         }
     }
 }
