@@ -33,6 +33,8 @@ pub(super) struct Coefficients {
     pub mobility: Vec<f64>,
     /// particle pressure per cell, linearised in phi
     pub pres: Vec<Pressure>,
+    /// kinetic theory: dp_el/dphi per cell (Pa)
+    pub elastic_slope: Vec<f64>,
     /// local rheologies: weight of the grains above a blocked face, added to the pressure
     /// of the cells below it (Pa)
     pub overburden: Vec<f64>,
@@ -115,6 +117,7 @@ impl Coefficients {
             cd_ratio: v(0.0),
             mobility: v(0.0),
             pres: vec![Pressure::default(); n],
+            elastic_slope: v(0.0),
             overburden: v(0.0),
             visc_ratio: v(1.0),
             drift: v(0.0),
