@@ -117,6 +117,20 @@ impl<'a> DragKernel<'a> {
         self.drag.cd_re_batch(&out.re_star, &mut out.cd_re);
         self.hindrance.factor_batch(phi, re_p, &mut out.factor);
     }
+
+    /// [`DragKernel::evaluate`] at the same volume fractions as `base` and other Reynolds
+    /// numbers (a difference in Re): the hindrance factor of `base` is reused when the
+    /// hindrance does not depend on Re, the same values without its batch call.
+    pub fn evaluate_at_reynolds(&self, base: &DragPoints, phi: &[f64], re_p: &[f64], out: &mut DragPoints) {
+        if self.hindrance.depends_on_reynolds() {
+            return self.evaluate(phi, re_p, out);
+        }
+        for ((s, &p), &r) in out.re_star.iter_mut().zip(phi).zip(re_p) {
+            *s = self.convention.ratio(p) * r;
+        }
+        self.drag.cd_re_batch(&out.re_star, &mut out.cd_re);
+        out.factor.copy_from_slice(&base.factor);
+    }
 }
 
 #[cfg(test)]

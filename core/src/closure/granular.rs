@@ -265,6 +265,15 @@ pub trait KineticTheory: Send + Sync {
         }
     }
 
+    /// F1 of [`KineticTheory::coefficients`] alone over a slice of volume fractions: the
+    /// Eulerian solver differences it in phi for the slope of the pressure, which needs
+    /// none of the other coefficients.
+    fn pressure_coefficient_batch(&self, phi: &[f64], out: &mut [f64]) {
+        for (o, &p) in out.iter_mut().zip(phi) {
+            *o = self.coefficients(p, None).f1;
+        }
+    }
+
     /// Coefficients over a slice of volume fractions, with the saltation input of each
     /// point (`None`: saltation off). The Eulerian solver calls it once per column.
     fn coefficients_batch(&self, phi: &[f64], salt: Option<&[SaltationInput]>, out: &mut [KineticCoefficients]) {

@@ -33,6 +33,8 @@ pub(super) struct Coefficients {
     pub mobility: Vec<f64>,
     /// particle pressure per cell, linearised in phi
     pub pres: Vec<Pressure>,
+    /// kinetic theory: dp_el/dphi per cell (Pa)
+    pub elastic_slope: Vec<f64>,
     /// local rheologies: weight of the grains above a blocked face, added to the pressure
     /// of the cells below it (Pa)
     pub overburden: Vec<f64>,
@@ -75,8 +77,9 @@ pub(super) struct Scratch {
     /// inputs of the fluctuation and kinetic closures
     pub turbulence: Vec<TurbulencePoint>,
     pub salt: Vec<SaltationInput>,
+    /// phi + dphi and F1 there, for dF1/dphi
     pub phi_h: Vec<f64>,
-    pub coef_h: Vec<KineticCoefficients>,
+    pub f1_h: Vec<f64>,
     /// shear rate of the new u_f for k and omega
     pub shear: Vec<f64>,
     /// C_D per cell and the drag-dissipation factor c_J of the temperature step
@@ -114,6 +117,7 @@ impl Coefficients {
             cd_ratio: v(0.0),
             mobility: v(0.0),
             pres: vec![Pressure::default(); n],
+            elastic_slope: v(0.0),
             overburden: v(0.0),
             visc_ratio: v(1.0),
             drift: v(0.0),
@@ -151,7 +155,7 @@ impl Scratch {
             turbulence: vec![TurbulencePoint::default(); n],
             salt: vec![salt; n],
             phi_h: vec![0.0; n],
-            coef_h: vec![KineticCoefficients::default(); n],
+            f1_h: vec![0.0; n],
             shear: vec![0.0; n],
             cd: vec![0.0; n],
             c_j: vec![0.0; n],
@@ -241,7 +245,7 @@ impl Eulerian<'_> {
             sc.re2[i] = sc.re[i] * (1.0 + DRE);
         }
         self.kernel.evaluate(&sc.phi_c, &sc.re, &mut sc.drag);
-        self.kernel.evaluate(&sc.phi_c, &sc.re2, &mut sc.drag2);
+        self.kernel.evaluate_at_reynolds(&sc.drag, &sc.phi_c, &sc.re2, &mut sc.drag2);
         let stokes = 0.75 * c.rho_f * c.nu_f / (c.d * c.d);
         let cd_inf = self.m.drag.cd_inf();
         let co = &mut self.co;

@@ -93,29 +93,37 @@ impl Eulerian<'_> {
             };
         }
         kt.coefficients_batch(&sc.phi_c, salt.then_some(&sc.salt[..]), &mut self.co.coef);
-        kt.coefficients_batch(&sc.phi_h, None, &mut sc.coef_h);
+        kt.pressure_coefficient_batch(&sc.phi_h, &mut sc.f1_h);
         for i in 0..n {
             let phi = sc.phi_c[i];
             let co = self.co.coef[i];
-            let f1p = if phi + DPHI < phi_max { (sc.coef_h[i].f1 - co.f1) / DPHI } else { co.f1 / phi.max(1e-12) };
+            let f1p = if phi + DPHI < phi_max { (sc.f1_h[i] - co.f1) / DPHI } else { co.f1 / phi.max(1e-12) };
             self.co.f1_slope[i] = f1p.max(0.0);
             let st = sc.salt[i].sqrt_t;
             self.co.eta_kin[i] = kt.shear_viscosity(&co, c.rho_p, c.d, st);
             self.co.kappa[i] = kt.conductivity(&co, c.rho_p, c.d, st);
         }
-        for i in 0..n {
-            self.co.pres[i] = self.kinetic_pressure(kt, elastic, i, self.s.temp[i].max(0.0));
+        for (i, &phi) in sc.phi_c.iter().enumerate() {
+            self.co.pres[i].p_el = elastic.pressure(phi);
+            self.co.elastic_slope[i] = elastic.derivative(phi);
         }
+        self.kinetic_pressures(kt);
     }
 
-    /// Particle pressure of cell `i` at temperature `t`, linearised in phi:
-    /// p_el + rho_p F1 T with slope p_el' + rho_p T F1' (eqs 2.14, 2.19).
-    pub(super) fn kinetic_pressure(&self, kt: &dyn KineticTheory, elastic: &Elastic, i: usize, t: f64) -> Pressure {
-        let phi = self.s.phi[i].max(0.0);
-        let p_el = elastic.pressure(phi);
-        let a = elastic.derivative(phi) + self.c.rho_p * t * self.co.f1_slope[i];
-        let p = p_el + kt.kinetic_pressure(&self.co.coef[i], self.c.rho_p, t);
-        Pressure { p, p_el, a, b: p - a * phi }
+    /// Particle pressure of every cell at the current temperature, linearised in phi:
+    /// p_el + rho_p F1 T with slope p_el' + rho_p T F1' (eqs 2.14, 2.19). The elastic part
+    /// and the coefficients are those of [`Self::kinetic_coefficients`]: phi is the same
+    /// until the phi step, so the temperature step reuses them.
+    pub(super) fn kinetic_pressures(&mut self, kt: &dyn KineticTheory) {
+        let rho_p = self.c.rho_p;
+        let co = &mut self.co;
+        for (i, (&phi, &t)) in self.s.phi.iter().zip(&self.s.temp).enumerate() {
+            let (phi, t) = (phi.max(0.0), t.max(0.0));
+            let p_el = co.pres[i].p_el;
+            let a = co.elastic_slope[i] + rho_p * t * co.f1_slope[i];
+            let p = p_el + kt.kinetic_pressure(&co.coef[i], rho_p, t);
+            co.pres[i] = Pressure { p, p_el, a, b: p - a * phi };
+        }
     }
 
     /// Pressure of a local rheology at every cell from the current phi and the cell shear

@@ -10,7 +10,7 @@ impl Eulerian<'_> {
     /// the new u_p (the column operator's, exact on stretched grids), conduction,
     /// collisional and drag dissipation implicit, so T stays >= 0.
     pub(super) fn solve_temperature(&mut self, dt: f64) -> Result<(), Breakdown> {
-        let Rheology::Kinetic { model: kt, elastic } = self.m.rheology else { return Ok(()) };
+        let Rheology::Kinetic { model: kt, .. } = self.m.rheology else { return Ok(()) };
         let n = self.len();
         let c = self.c;
         let top = self.op.stress_free_shear_top(&self.s.up);
@@ -53,9 +53,7 @@ impl Eulerian<'_> {
             self.s.temp[i] = v.max(0.0);
         }
         // the phi step sees the new temperature
-        for i in 0..n {
-            self.co.pres[i] = self.kinetic_pressure(kt, &elastic, i, self.s.temp[i]);
-        }
+        self.kinetic_pressures(kt);
         Ok(())
     }
 }

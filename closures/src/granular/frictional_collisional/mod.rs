@@ -197,6 +197,46 @@ impl FrictionalCollisional {
     }
 }
 
+/// The parts of the coefficients that depend on the parameters only, not on phi: the
+/// a(mu_p) of g0 (a tanh) and the effective restitution (an atan). A batch computes them
+/// once for its column instead of once per point.
+#[derive(Clone, Copy)]
+struct Invariants {
+    a: f64,
+    e_eff: f64,
+}
+
+impl FrictionalCollisional {
+    fn invariants(&self) -> Invariants {
+        Invariants { a: self.g0.coefficient_a(self.friction), e_eff: self.effective_restitution() }
+    }
+
+    /// [`KineticTheory::coefficients`] with the invariants given.
+    #[inline]
+    fn coefficients_with(&self, k: Invariants, phi: f64, salt: Option<&SaltationInput>) -> KineticCoefficients {
+        let phi = non_negative(phi);
+        let e = self.restitution;
+        let g0 = self.g0.g0_with_a(phi, self.phi_max, k.a);
+        let (eta_k, kappa_k) = (gd::eta_k(phi, e, g0), gd::kappa_k(phi, e, g0));
+        let (eta_k, kappa_k) = match salt {
+            Some(s) if self.saltation.enabled => {
+                let eta_salt = self.saltation.eta_salt(phi, s);
+                let kappa_salt = eta_salt / self.saltation.sigma;
+                (saltation::harmonic(eta_k, eta_salt), saltation::harmonic(kappa_k, kappa_salt))
+            }
+            _ => (eta_k, kappa_k),
+        };
+        KineticCoefficients {
+            g0,
+            f1: gd::f1(phi, e, g0),
+            f2: eta_k + gd::eta_cb(phi, e, g0),
+            f3: kappa_k + gd::kappa_cb(phi, e, g0),
+            f4: gd::f4(phi, k.e_eff, g0),
+            e_eff: k.e_eff,
+        }
+    }
+}
+
 /// phi < 0 -> 0, NaN kept.
 #[inline]
 fn non_negative(phi: f64) -> f64 {
@@ -231,26 +271,31 @@ impl KineticTheory for FrictionalCollisional {
     }
 
     fn coefficients(&self, phi: f64, salt: Option<&SaltationInput>) -> KineticCoefficients {
-        let phi = non_negative(phi);
-        let e = self.restitution;
-        let g0 = self.g0.g0(phi, self.phi_max, self.friction);
-        let e_eff = self.effective_restitution();
-        let (eta_k, kappa_k) = (gd::eta_k(phi, e, g0), gd::kappa_k(phi, e, g0));
-        let (eta_k, kappa_k) = match salt {
-            Some(s) if self.saltation.enabled => {
-                let eta_salt = self.saltation.eta_salt(phi, s);
-                let kappa_salt = eta_salt / self.saltation.sigma;
-                (saltation::harmonic(eta_k, eta_salt), saltation::harmonic(kappa_k, kappa_salt))
+        self.coefficients_with(self.invariants(), phi, salt)
+    }
+
+    fn coefficients_batch(&self, phi: &[f64], salt: Option<&[SaltationInput]>, out: &mut [KineticCoefficients]) {
+        let k = self.invariants();
+        match salt {
+            Some(salt) => {
+                for ((o, &p), s) in out.iter_mut().zip(phi).zip(salt) {
+                    *o = self.coefficients_with(k, p, Some(s));
+                }
             }
-            _ => (eta_k, kappa_k),
-        };
-        KineticCoefficients {
-            g0,
-            f1: gd::f1(phi, e, g0),
-            f2: eta_k + gd::eta_cb(phi, e, g0),
-            f3: kappa_k + gd::kappa_cb(phi, e, g0),
-            f4: gd::f4(phi, e_eff, g0),
-            e_eff,
+            None => {
+                for (o, &p) in out.iter_mut().zip(phi) {
+                    *o = self.coefficients_with(k, p, None);
+                }
+            }
+        }
+    }
+
+    // F1 needs g0 only: no viscosity, conductivity nor saltation terms
+    fn pressure_coefficient_batch(&self, phi: &[f64], out: &mut [f64]) {
+        let a = self.g0.coefficient_a(self.friction);
+        for (o, &p) in out.iter_mut().zip(phi) {
+            let p = non_negative(p);
+            *o = gd::f1(p, self.restitution, self.g0.g0_with_a(p, self.phi_max, a));
         }
     }
 
