@@ -172,19 +172,26 @@ fn malformed_toml_unknown_keys_and_terms_are_refused() {
     refused("cal_zero_evals", &calibrate_file(&r, TWO, "[optimiser]\nmax_evaluations = 0\n"), "max_evaluations");
 }
 
+/// `saltus calibrate FILE` (relative to the checkout) into a fresh folder `name`: its
+/// calibration.json, after asserting the run succeeded and the optimiser converged.
+fn calibrated(name: &str, file: &str) -> serde_json::Value {
+    let d = tmp_dir(name);
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
+    let o = saltus(&["calibrate", file.to_str().unwrap(), "--out", d.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("calibration.json")).unwrap()).unwrap();
+    assert_eq!(j["optimiser"]["converged"], true, "{}", j["optimiser"]);
+    j
+}
+
 /// Chassagne et al. 2023 case 14 fitted on its two DEM seeds: the defaults miss the DEM by
 /// 1.5-2x its seed scatter in phi, u_p and qs*; with g0's a, its divergence exponent and
 /// phi_rlp fitted jointly, every term falls within 1.2x the scatter, and eq 2.23's
 /// exponent 1.5 lies more than two standard errors above the fitted one.
 #[test]
 fn case_14_calibrated_on_its_dem_meets_it_within_the_seed_scatter() {
-    let d = tmp_dir("calibrate_case14");
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/chassagne2023/calibrate_case14.toml");
-    let o = saltus(&["calibrate", file.to_str().unwrap(), "--out", d.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let j: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(d.join("calibration.json")).unwrap()).unwrap();
-    assert_eq!(j["optimiser"]["converged"], true, "{}", j["optimiser"]);
+    let j = calibrated("calibrate_case14", "cases/chassagne2023/calibrate_case14.toml");
     for (start, optimum) in
         j["misfit"]["start"].as_array().unwrap().iter().zip(j["misfit"]["optimum"].as_array().unwrap())
     {
@@ -209,13 +216,7 @@ fn case_14_calibrated_on_its_dem_meets_it_within_the_seed_scatter() {
 /// near 0.28), not a constant: the calibration measures it rather than removing it.
 #[test]
 fn case_1_keeps_a_misfit_no_constant_of_g0_removes() {
-    let d = tmp_dir("calibrate_case01");
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/chassagne2023/calibrate_case01.toml");
-    let o = saltus(&["calibrate", file.to_str().unwrap(), "--out", d.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let j: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(d.join("calibration.json")).unwrap()).unwrap();
-    assert_eq!(j["optimiser"]["converged"], true, "{}", j["optimiser"]);
+    let j = calibrated("calibrate_case01", "cases/chassagne2023/calibrate_case01.toml");
     let (chi2, chi2_start, dof) = (
         j["misfit"]["chi2"].as_f64().unwrap(),
         j["misfit"]["chi2_start"].as_f64().unwrap(),
@@ -235,14 +236,8 @@ fn case_1_keeps_a_misfit_no_constant_of_g0_removes() {
 /// DEM's dimensional qs over sqrt((rho_p / rho_f - 1) g d^3) of the model's fluid (air).
 #[test]
 fn dry_incline_calibrated_on_its_dem_meets_its_rate_within_ten_percent() {
-    let d = tmp_dir("calibrate_dry_incline");
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/granular");
-    let file = root.join("calibrate_dry_incline.toml");
-    let o = saltus(&["calibrate", file.to_str().unwrap(), "--out", d.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let j: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(d.join("calibration.json")).unwrap()).unwrap();
-    assert_eq!(j["optimiser"]["converged"], true, "{}", j["optimiser"]);
+    let j = calibrated("calibrate_dry_incline", "cases/granular/calibrate_dry_incline.toml");
     let qs_dem: f64 = ["incline25_s1", "incline25_s2"]
         .iter()
         .map(|s| {
@@ -272,13 +267,7 @@ fn dry_incline_calibrated_on_its_dem_meets_its_rate_within_ten_percent() {
 /// every term within half the scatter.
 #[test]
 fn couette_constants_are_identifiable_and_meet_the_dem_within_its_scatter() {
-    let d = tmp_dir("calibrate_couette");
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/fry2024/calibrate_couette.toml");
-    let o = saltus(&["calibrate", file.to_str().unwrap(), "--out", d.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let j: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(d.join("calibration.json")).unwrap()).unwrap();
-    assert_eq!(j["optimiser"]["converged"], true, "{}", j["optimiser"]);
+    let j = calibrated("calibrate_couette", "cases/fry2024/calibrate_couette.toml");
     let phi0 = j["misfit"]["start"].as_array().unwrap().iter().find(|t| t["term"] == "phi").unwrap()["ratio"].clone();
     assert!(phi0.as_f64().unwrap() > 2.0, "phi with the paper's constants: {phi0}x the scatter");
     for t in j["misfit"]["optimum"].as_array().unwrap() {
@@ -330,13 +319,7 @@ fn the_measured_sheet_flow_asks_mu_i_for_a_static_friction_near_zero() {
         saltus_core::data::missing(&data, "the sheet-flow calibration against the ACVP profiles");
         return;
     }
-    let d = tmp_dir("calibrate_revil_baudard");
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/revil_baudard2015/calibrate_sheet_flow_mu_i.toml");
-    let o = saltus(&["calibrate", file.to_str().unwrap(), "--out", d.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let j: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(d.join("calibration.json")).unwrap()).unwrap();
-    assert_eq!(j["optimiser"]["converged"], true, "{}", j["optimiser"]);
+    let j = calibrated("calibrate_revil_baudard", "cases/revil_baudard2015/calibrate_sheet_flow_mu_i.toml");
     for (start, optimum) in
         j["misfit"]["start"].as_array().unwrap().iter().zip(j["misfit"]["optimum"].as_array().unwrap())
     {

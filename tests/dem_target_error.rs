@@ -17,48 +17,32 @@ fn scene() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/scenes/small_dem_bed.toml")
 }
 
+/// The small bed run with fluid periods of 2 ms and `set` into a fresh folder `name`: its
+/// summary.
+fn run(name: &str, set: &[&str]) -> serde_json::Value {
+    let s = scene();
+    let out = tmp_dir(name);
+    let mut args = vec!["run", s.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"];
+    for x in ["solver.lagrangian.fluid_period=2e-3"].iter().chain(set) {
+        args.extend(["--set", x]);
+    }
+    let o = saltus(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    summary(&out)
+}
+
 #[test]
 fn a_dem_run_stops_at_its_target_error_with_an_answer_a_longer_run_confirms() {
-    let s = scene();
-    let short = tmp_dir("target_error_short");
-    let o = saltus(&[
-        "run",
-        s.to_str().unwrap(),
-        "--set",
-        "solver.lagrangian.end_time=30",
-        "--set",
-        "solver.lagrangian.fluid_period=2e-3",
-        "--set",
-        "solver.lagrangian.target_error=0.02",
-        "--out",
-        short.to_str().unwrap(),
-        "--quiet",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let a = summary(&short);
+    let a = run("target_error_short", &["solver.lagrangian.end_time=30", "solver.lagrangian.target_error=0.02"]);
     assert_eq!(a["ending"], "target_error", "{a}");
     let (t, start) = (a["sim_time_s"].as_f64().unwrap(), a["window_start_s"].as_f64().unwrap());
     assert!(t < 30.0 && start > 0.0 && start <= 0.5 * t + 1e-9, "stopped at {t} s, window from {start} s");
     let (q, e) = (a["qs_window"].as_f64().unwrap(), a["qs_window_stderr"].as_f64().unwrap());
     assert!(e > 0.0 && e <= 0.02 * q, "qs {q} +- {e}");
-    // the same bed run on to 16 s
-    let long = tmp_dir("target_error_long");
-    let o = saltus(&[
-        "run",
-        s.to_str().unwrap(),
-        "--set",
-        "solver.lagrangian.end_time=16",
-        "--set",
-        "solver.lagrangian.fluid_period=2e-3",
-        "--out",
-        long.to_str().unwrap(),
-        "--quiet",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let b = summary(&long);
+    // the same bed run on to 16 s: its own window (its error may be beyond its blocks: a
+    // 57-grain bed fluctuates slowly), against the short answer's error bar
+    let b = run("target_error_long", &["solver.lagrangian.end_time=16"]);
     assert_eq!(b["ending"], "end_time");
-    // the long run's own window (its error may be beyond its blocks: a 57-grain bed
-    // fluctuates slowly), against the short answer's error bar
     let ql = b["qs_window"].as_f64().unwrap();
     assert!((q - ql).abs() < 3.0 * e, "short {q} +- {e}, long {ql}");
 }

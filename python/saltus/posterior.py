@@ -160,10 +160,12 @@ def posterior(
         raise _native.SceneError(f"burn: {burn} leaves nothing of {steps} steps")
     thin = _positive("thin", thin)
     threads = _positive("threads", threads)
+    seed = _positive("seed", seed, 0)
 
     optimum = np.array([p["value"] for p in j["parameters"]], dtype=float)
     statistical = np.array([np.nan if p["stderr_statistical"] is None else p["stderr_statistical"] for p in j["parameters"]])
-    s = float(j["misfit"]["error_scale"]) if scale else 1.0
+    # the report writes null for a figure it has not (no finite chi^2 / dof): no scaling
+    s = float(j["misfit"].get("error_scale") or 1.0) if scale else 1.0
     corr = np.array([[np.nan if v is None else v for v in row] for row in j["correlation"]], dtype=float)
     laplace_sd = statistical * s
     bounds = np.array(misfit.bounds, dtype=float)

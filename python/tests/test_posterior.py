@@ -74,6 +74,8 @@ def test_bad_input_is_refused_by_name(tmp_path):
         ({"steps": 0}, "steps"),
         ({"steps": 4, "burn": 4}, "burn"),
         ({"threads": 0}, "threads"),
+        ({"seed": -1}, "seed"),
+        ({"seed": "one"}, "seed"),
     ]:
         with pytest.raises(saltus.SceneError, match=name):
             saltus.posterior(cal, c, **kwargs)

@@ -72,8 +72,8 @@ pub fn resolve(scene: &Scene) -> Result<Box<dyn Stepper + '_>, Error> {
                     message,
                 };
                 let mut p = Profiles::default();
-                for (name, values) in saltus_core::scene::initial::read(std::path::Path::new(csv), &scene.path)? {
-                    p.push(&name, values);
+                for (name, values) in &scene.domain.initial_columns {
+                    p.push(name, values.clone());
                 }
                 column.warm_start(&WarmStart::Profiles(p)).map_err(|m| key(format!("{csv}: {m}")))?;
             }

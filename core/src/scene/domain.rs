@@ -76,6 +76,10 @@ pub struct Domain {
     /// instead of rest, relative to the scene; absolute once loaded
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub initial_profiles: Option<String>,
+    /// the columns of `initial_profiles` as loaded ([`super::initial::read`]): read once,
+    /// when the scene is
+    #[serde(skip)]
+    pub initial_columns: Vec<(String, Vec<f64>)>,
 }
 
 fn unit_stretching() -> f64 {
@@ -95,6 +99,7 @@ impl Default for Domain {
             top: Top::FreeSurface,
             lid_velocity: 0.0,
             initial_profiles: None,
+            initial_columns: Vec::new(),
         }
     }
 }

@@ -370,7 +370,7 @@ impl Scene {
                 });
             }
             *csv = absolute(&dir, csv);
-            initial::read(Path::new(csv.as_str()), &self.path)?;
+            self.domain.initial_columns = initial::read(Path::new(csv.as_str()), &self.path)?;
         }
         Ok(())
     }

@@ -66,7 +66,7 @@ impl Eulerian<'_> {
         }
         if !clear {
             if mass.is_nan() || mass <= 0.0 {
-                return Err("the profiles hold no sediment, or the scene none".into());
+                return Err("the profiles hold no sediment and the scene some".into());
             }
             let scale = self.s.mass0 / mass;
             self.s.phi.iter_mut().for_each(|v| *v *= scale);

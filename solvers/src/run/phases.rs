@@ -125,13 +125,15 @@ impl PhaseAverages {
     /// given, its profiles. The run between the last state and this one is taken as linear
     /// in time (the trapezoidal rule, second order in the step like the solvers), cut at
     /// the edges of the phase bins and periods; the first state only opens the record.
-    pub fn add(&mut self, t: f64, qs: Option<f64>, profiles: Option<&Profiles>) {
+    pub fn add(&mut self, t: f64, qs: Option<f64>, profiles: Option<Profiles>) {
         let values = profiles.map(|p| {
+            let mut columns = p.columns.into_iter();
+            let z = columns.next().map(|(_, z)| z).unwrap_or_default();
+            let (names, values): (Vec<String>, Vec<Vec<f64>>) = columns.unzip();
             if self.names.is_empty() {
-                self.names = p.columns.iter().skip(1).map(|(n, _)| n.clone()).collect();
-                self.z = p.columns.first().map(|(_, z)| z.clone()).unwrap_or_default();
+                (self.names, self.z) = (names, z);
             }
-            p.columns.iter().skip(1).map(|(_, v)| v.clone()).collect::<Vec<_>>()
+            values
         });
         let now = Sample { t, qs: qs.filter(|q| q.is_finite()).unwrap_or(0.0), profiles: values };
         if let Some(before) = self.last.take() {
@@ -331,14 +333,14 @@ impl Observer for PhaseAverages {
     fn start(&mut self, stepper: &dyn Stepper, _: &Clock) {
         let t = stepper.progress().time;
         let profiles = self.wants_profiles(t).then(|| stepper.phase_profiles());
-        self.add(t, stepper.sample().qs, profiles.as_ref());
+        self.add(t, stepper.sample().qs, profiles);
     }
 
     fn step(&mut self, stepper: &dyn Stepper, progress: &Progress, _: &Clock) -> Control {
         if progress.phase == Phase::Flow {
             let t = progress.time;
             let profiles = self.wants_profiles(t).then(|| stepper.phase_profiles());
-            self.add(t, stepper.sample().qs, profiles.as_ref());
+            self.add(t, stepper.sample().qs, profiles);
         }
         Control::Continue
     }
@@ -374,7 +376,7 @@ mod tests {
         for k in 0..=periods * steps_per_period {
             // each state a point sample at its own time
             let t = k as f64 * dt;
-            p.add(t, Some(signal(t) + noise()), Some(&profile(t)));
+            p.add(t, Some(signal(t) + noise()), Some(profile(t)));
         }
         p.finish_at(periods as f64 * period);
         assert_eq!(p.periods(), periods - 2);

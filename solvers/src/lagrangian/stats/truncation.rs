@@ -166,19 +166,9 @@ impl Truncation {
         })
     }
 
-    /// Samples added.
-    pub fn samples(&self) -> usize {
-        self.samples
-    }
-
-    /// Samples per stored batch (5, or a multiple after merges).
-    pub fn batch_size(&self) -> usize {
-        self.size
-    }
-
-    /// The truncation point d* (batches cut off) and MSER(d*), when the minimum lies in
-    /// the first half of at least [`MIN_BATCHES`] batches.
-    pub fn truncation(&self) -> Option<(usize, f64)> {
+    /// The truncation point d* (batches cut off), when the minimum of MSER lies in the
+    /// first half of at least [`MIN_BATCHES`] batches.
+    fn truncation(&self) -> Option<usize> {
         let n = self.means.len();
         if n < MIN_BATCHES {
             return None;
@@ -197,14 +187,14 @@ impl Truncation {
                 best = Some((d, mser));
             }
         }
-        let (d, v) = best?;
+        let (d, _) = best?;
         // a minimum at the middle is one of the second half's: not levelled yet
-        (d < n / 2).then_some((d, v))
+        (d < n / 2).then_some(d)
     }
 
     /// The window and the rate over it (see [`Window`]), once MSER finds one.
     pub fn window(&self) -> Option<Window> {
-        let (d, _) = self.truncation()?;
+        let d = self.truncation()?;
         let start = if d == 0 { self.first? } else { self.ends[d - 1] };
         let window = &self.means[d..];
         let mut b = Blocking::new();
@@ -314,8 +304,8 @@ mod tests {
         for (k, x) in series(n, 2000.0, 5).into_iter().enumerate() {
             t.add(k as f64, x);
         }
-        assert!(t.batch_size() >= 2 * BATCH && t.means.len() < MAX_BATCHES);
-        assert_eq!(t.samples(), n);
+        assert!(t.size >= 2 * BATCH && t.means.len() < MAX_BATCHES);
+        assert_eq!(t.samples, n);
         let w = t.window().expect("a window");
         assert!(w.start > 4000.0 && w.start < 16000.0, "window from {}", w.start);
     }
@@ -327,7 +317,7 @@ mod tests {
         for k in 0..40 {
             t.add(k as f64, if k % 2 == 0 { f64::NAN } else { 1.0 });
         }
-        assert_eq!(t.samples(), 20);
+        assert_eq!(t.samples, 20);
         assert_eq!(t.window(), None);
     }
 
