@@ -345,3 +345,72 @@ fn the_peer_bedload_scene_has_the_numbers_of_the_peer_script() {
     // fluid cells of d/30 over the bed and the water
     assert_eq!(l.cells, Some(((layers + 17.5) * 30.0) as usize));
 }
+
+/// The files a row of `docs/cases.md`'s tables names in its first cell: backticked paths
+/// relative to `cases/`, separated by `,` or `...` (a range of files of one folder, in
+/// name order); a name without a folder is in the folder of the name before it, and a name
+/// ending in `/` covers its folder.
+struct Listed {
+    files: Vec<String>,
+    ranges: Vec<(String, String)>,
+    folders: Vec<String>,
+}
+
+fn listed_in_cases_md() -> Listed {
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/cases.md"))
+        .expect("docs/cases.md");
+    let mut listed = Listed { files: Vec::new(), ranges: Vec::new(), folders: Vec::new() };
+    for line in text.lines().filter(|l| l.starts_with("| `")) {
+        let cell = line.split('|').nth(1).unwrap_or("");
+        let mut folder = String::new();
+        let mut previous: Option<String> = None;
+        let mut in_range = false;
+        for (i, part) in cell.split('`').enumerate() {
+            if i % 2 == 0 {
+                in_range |= part.contains("...");
+                continue;
+            }
+            if part.ends_with('/') {
+                listed.folders.push(part.to_string());
+                continue;
+            }
+            let full = if part.contains('/') {
+                folder = part.rsplit_once('/').map(|(f, _)| format!("{f}/")).unwrap_or_default();
+                part.to_string()
+            } else {
+                format!("{folder}{part}")
+            };
+            if in_range {
+                if let Some(start) = previous.take() {
+                    listed.ranges.push((start, full.clone()));
+                }
+                in_range = false;
+            }
+            listed.files.push(full.clone());
+            previous = Some(full);
+        }
+    }
+    listed
+}
+
+#[test]
+fn every_file_under_cases_is_listed_in_the_cases_page() {
+    let root = cases_dir();
+    let mut all = Vec::new();
+    toml_files(&root, &mut all);
+    let listed = listed_in_cases_md();
+    let mut missing = Vec::new();
+    for path in &all {
+        let rel = path.strip_prefix(&root).expect("under cases/").to_string_lossy().replace('\\', "/");
+        let named = listed.files.contains(&rel)
+            || listed.folders.iter().any(|f| rel.starts_with(f.as_str()))
+            || listed.ranges.iter().any(|(a, b)| {
+                let folder = |s: &str| s.rsplit_once('/').map(|(f, _)| f.to_string());
+                folder(a) == folder(&rel) && a.as_str() <= rel.as_str() && rel.as_str() <= b.as_str()
+            });
+        if !named {
+            missing.push(rel);
+        }
+    }
+    assert!(missing.is_empty(), "docs/cases.md does not list: {missing:?}");
+}
