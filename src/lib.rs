@@ -47,6 +47,7 @@ pub mod phase_plot;
 pub mod plot;
 pub mod precision;
 pub mod runner;
+pub mod seeds;
 pub mod sweep;
 pub mod table;
 

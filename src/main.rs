@@ -81,6 +81,12 @@ enum Command {
         /// print the summary (summary.json) on stdout as JSON, and nothing else on stdout
         #[arg(long)]
         json: bool,
+        /// run N seeds of a DEM scene in parallel (the scene's seed and the N - 1 after it),
+        /// each into OUT/seed_<k>/, as one answer: with solver.lagrangian.target_error they
+        /// stop together when the pooled transport rate has that relative error;
+        /// OUT/seeds.json holds the pooled answer (docs/lagrangian.md)
+        #[arg(long, value_name = "N")]
+        seeds: Option<usize>,
     },
     /// Run several variants of one scene in parallel and compare them: a table of their
     /// summaries (comparison.csv) and their profiles on one figure (comparison.png).
@@ -315,12 +321,33 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             outln!("# {} resolved: every default filled in, ranges and closure needs checked", scene.display());
             out!("{}", s.to_toml()?);
         }
-        Command::Run { scene, set, closures, out, restart, max_wall, log_interval, quiet, json } => {
+        Command::Run { scene, set, closures, out, restart, max_wall, log_interval, quiet, json, seeds } => {
             if !(log_interval.is_finite() && log_interval > 0.0 && log_interval <= 1e9) {
                 anyhow::bail!("--log-interval {log_interval}: must be a number of seconds in (0, 1e9]");
             }
             if let Some(w) = max_wall.filter(|w| !(w.is_finite() && *w >= 0.0 && *w <= 1e9)) {
                 anyhow::bail!("--max-wall {w}: must be a number of seconds in [0, 1e9]");
+            }
+            if let Some(n) = seeds {
+                if let Err(e) = saltus::runner::catch_interrupt() {
+                    saltus::errln!("warning: {e:#}; an interrupt ends the runs without writing their outputs");
+                }
+                let settings = saltus::runner::RunSettings { restart, log_every: None, max_wall, warm_start: None };
+                let base = Scene::from_file_with_closures(&scene, &set, closures.as_deref())?;
+                let out = out.unwrap_or_else(|| saltus::runner::default_out(&base));
+                let report = saltus::seeds::run_seeds(&scene, &set, closures.as_deref(), n, &out, &settings)?;
+                if !quiet {
+                    outln!("{}\noutputs: {}", report.text(), report.file.display());
+                }
+                let failed: Vec<String> = report
+                    .runs
+                    .iter()
+                    .filter_map(|r| r.outcome.error.as_ref().map(|e| format!("seed {}: {e}", r.seed)))
+                    .collect();
+                if !failed.is_empty() {
+                    anyhow::bail!("{}", failed.join("; "));
+                }
+                return Ok(());
             }
             // the solver's set-up inside `run` is `validate` (`resolve`), refused before
             // any output is written: loading the schema is all that is left to do here

@@ -11,8 +11,8 @@ use anyhow::{bail, Context};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use saltus_core::param::decimal;
 use saltus_core::scene::Scene;
-use saltus_solvers::run::{Control, Phase};
-use saltus_solvers::{Ending, Progress, RunReport};
+use saltus_solvers::run::{Clock, Control, Phase};
+use saltus_solvers::{Ending, Observer, Progress, RunReport, Stepper};
 
 use crate::plot::{self, Reference, RUN_PANELS};
 use crate::table::Table;
@@ -73,6 +73,21 @@ pub struct RunOutcome {
     pub warnings: Vec<String>,
     /// wall-clock time of the solve (s); 0 when the run could not be set up
     pub wall: f64,
+}
+
+impl RunOutcome {
+    /// A run that could not be set up or whose outputs could not be written.
+    pub fn failed(error: String) -> Self {
+        Self {
+            ending: None,
+            report: None,
+            error: Some(error),
+            figure: None,
+            phase_figures: Vec::new(),
+            warnings: Vec::new(),
+            wall: 0.0,
+        }
+    }
 }
 
 /// A run that ended early but wrote its outputs: the message and the exit code.
@@ -238,15 +253,8 @@ pub fn load_checked(scene: &Path, set: &[String], closures: Option<&Path>) -> Re
 /// with its outputs written. Reference data that cannot be read gives a warning, not a
 /// failure.
 pub fn run_scene(scene: &Scene, out: &Path, bar: &ProgressBar, settings: &RunSettings) -> RunOutcome {
-    run_scene_with(scene, out, bar, settings, &mut |_| interrupted()).unwrap_or_else(|e| RunOutcome {
-        ending: None,
-        report: None,
-        error: Some(e.to_string()),
-        figure: None,
-        phase_figures: Vec::new(),
-        warnings: Vec::new(),
-        wall: 0.0,
-    })
+    run_scene_with(scene, out, bar, settings, &mut |_| interrupted())
+        .unwrap_or_else(|e| RunOutcome::failed(e.to_string()))
 }
 
 /// [`run_scene`] for callers with their own way to stop a run: `stop` is asked after
@@ -259,6 +267,49 @@ pub fn run_scene_with(
     bar: &ProgressBar,
     settings: &RunSettings,
     stop: &mut dyn FnMut(&Progress) -> bool,
+) -> Result<RunOutcome, saltus_core::Error> {
+    run_scene_observed(scene, out, bar, settings, stop, None)
+}
+
+/// An observer after another: the second sees a unit of work only when the first lets
+/// the run go on.
+struct Chain<'a, 'b> {
+    first: &'a mut dyn Observer,
+    second: Option<&'b mut dyn Observer>,
+}
+
+impl Observer for Chain<'_, '_> {
+    fn start(&mut self, stepper: &dyn Stepper, clock: &Clock) {
+        self.first.start(stepper, clock);
+        if let Some(o) = self.second.as_deref_mut() {
+            o.start(stepper, clock);
+        }
+    }
+    fn step(&mut self, stepper: &dyn Stepper, progress: &Progress, clock: &Clock) -> Control {
+        match self.first.step(stepper, progress, clock) {
+            Control::Continue => {
+                self.second.as_deref_mut().map_or(Control::Continue, |o| o.step(stepper, progress, clock))
+            }
+            other => other,
+        }
+    }
+    fn finish(&mut self, stepper: &dyn Stepper, ending: &Ending, clock: &Clock) {
+        self.first.finish(stepper, ending, clock);
+        if let Some(o) = self.second.as_deref_mut() {
+            o.finish(stepper, ending, clock);
+        }
+    }
+}
+
+/// [`run_scene_with`] with one more observer of every unit of work after the progress
+/// display (the pooled stopping rule of several seeds, [`crate::seeds`]).
+pub fn run_scene_observed(
+    scene: &Scene,
+    out: &Path,
+    bar: &ProgressBar,
+    settings: &RunSettings,
+    stop: &mut dyn FnMut(&Progress) -> bool,
+    extra: Option<&mut dyn Observer>,
 ) -> Result<RunOutcome, saltus_core::Error> {
     let mut last: Option<Instant> = None;
     let started = Instant::now();
@@ -307,7 +358,7 @@ pub fn run_scene_with(
         max_wall: settings.max_wall,
         warm_start: settings.warm_start.clone(),
     };
-    let result = saltus_solvers::run_with(scene, out, &mut observer, &options);
+    let result = saltus_solvers::run_with(scene, out, &mut Chain { first: &mut observer, second: extra }, &options);
     bar.finish_and_clear();
     let run = result?;
     let mut warnings = Vec::new();

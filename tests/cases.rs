@@ -357,8 +357,8 @@ struct Listed {
 }
 
 fn listed_in_cases_md() -> Listed {
-    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/cases.md"))
-        .expect("docs/cases.md");
+    let text =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/cases.md")).expect("docs/cases.md");
     let mut listed = Listed { files: Vec::new(), ranges: Vec::new(), folders: Vec::new() };
     for line in text.lines().filter(|l| l.starts_with("| `")) {
         let cell = line.split('|').nth(1).unwrap_or("");

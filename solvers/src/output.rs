@@ -180,6 +180,9 @@ pub struct Summary {
     /// its standard error (m^2/s), blocks of batch means chosen from their correlation
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub qs_window_stderr: Option<f64>,
+    /// Geweke's z between the window's first 10 % and last 50 % (level within +-2)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub qs_window_geweke_z: Option<f64>,
     /// DEM runs: neighbour-list builds of the whole run, the deposition's included (per
     /// step: over `total_steps`)
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -55,6 +55,15 @@ impl Stepper for Lagrangian<'_> {
         }
     }
 
+    fn answer(&self) -> Option<crate::run::Answer> {
+        self.state.truncation.window().map(|w| crate::run::Answer {
+            start: w.start,
+            mean: w.mean,
+            stderr: w.stderr,
+            geweke_z: w.geweke_z,
+        })
+    }
+
     fn report(&self, ending: &Ending, clock: &Clock) -> RunReport {
         report::report(self, ending, clock)
     }

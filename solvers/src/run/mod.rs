@@ -249,6 +249,23 @@ pub enum Control {
     Continue,
     /// stop now, ending [`Ending::Interrupted`]
     Stop,
+    /// stop now, ending [`Ending::TargetError`]: the answer an observer pools over several
+    /// runs (seeds) has the error asked for
+    Answered,
+}
+
+/// The run's answer so far: the transport rate over the averaging window the run found in
+/// its own series ([`Stepper::answer`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Answer {
+    /// start of the window (s)
+    pub start: f64,
+    /// the transport rate qs over it (m^2/s)
+    pub mean: f64,
+    /// its standard error from the window's blocks (m^2/s), when there are enough
+    pub stderr: Option<f64>,
+    /// Geweke's z between the window's first 10 % and last 50 %, when tested
+    pub geweke_z: Option<f64>,
 }
 
 /// A solver as the driver sees it.
@@ -267,6 +284,12 @@ pub trait Stepper {
 
     /// Where the run is.
     fn progress(&self) -> Progress;
+
+    /// The transport rate over the averaging window found so far, for solvers that
+    /// detect one (the DEM); `None` otherwise or before the window exists.
+    fn answer(&self) -> Option<Answer> {
+        None
+    }
 
     /// One unit of work with the scene's limits, ending where the driver would (the end
     /// time or the step cap reached, before or by this unit): for callers that step a
@@ -459,13 +482,20 @@ pub fn drive_with(
             break e;
         }
         let t = Instant::now();
-        let mut stop = false;
+        let (mut stop, mut answered) = (false, false);
         for o in observers.iter_mut() {
-            stop |= o.step(stepper, &p, &clock) == Control::Stop;
+            match o.step(stepper, &p, &clock) {
+                Control::Continue => {}
+                Control::Stop => stop = true,
+                Control::Answered => answered = true,
+            }
         }
         output += t.elapsed().as_secs_f64();
         if stop {
             break Ending::Interrupted;
+        }
+        if answered {
+            break Ending::TargetError;
         }
     };
     tick(&mut clock, stepper.progress().phase, &mut flow_started);

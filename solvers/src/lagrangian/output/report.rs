@@ -122,6 +122,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
         window_start_s: window.map(|w| w.start),
         qs_window: window.and_then(|w| finite(w.mean)),
         qs_window_stderr: window.and_then(|w| w.stderr).and_then(finite),
+        qs_window_geweke_z: window.and_then(|w| w.geweke_z).and_then(finite),
         neighbour_builds: Some(m.dem().list().builds),
         timing: None,
     };
