@@ -371,7 +371,17 @@ pub fn run_seeds(
                 })
             })
             .collect();
-        handles.into_iter().map(|h| h.join().unwrap_or_else(|_| panic!("a seed's run panicked"))).collect()
+        handles
+            .into_iter()
+            .zip(&scenes)
+            .map(|(h, (seed, _))| {
+                h.join().unwrap_or_else(|_| SeedRun {
+                    seed: *seed,
+                    out: out.join(format!("seed_{seed}")),
+                    outcome: RunOutcome::failed("the run stopped on an internal error".into()),
+                })
+            })
+            .collect()
     });
     let answers: Option<Vec<Answer>> = runs
         .iter()

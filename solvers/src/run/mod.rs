@@ -14,6 +14,8 @@
 //! [`Breakdown`] whichever solver met it; the last state always stays in the stepper so
 //! that the caller can report it.
 
+mod answer;
+pub use answer::Answer;
 pub mod checkpoint;
 pub mod cpu;
 pub mod history;
@@ -252,20 +254,6 @@ pub enum Control {
     /// stop now, ending [`Ending::TargetError`]: the answer an observer pools over several
     /// runs (seeds) has the error asked for
     Answered,
-}
-
-/// The run's answer so far: the transport rate over the averaging window the run found in
-/// its own series ([`Stepper::answer`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Answer {
-    /// start of the window (s)
-    pub start: f64,
-    /// the transport rate qs over it (m^2/s)
-    pub mean: f64,
-    /// its standard error from the window's blocks (m^2/s), when there are enough
-    pub stderr: Option<f64>,
-    /// Geweke's z between the window's first 10 % and last 50 %, when tested
-    pub geweke_z: Option<f64>,
 }
 
 /// A solver as the driver sees it.
