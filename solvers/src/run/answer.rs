@@ -1,7 +1,7 @@
 //! What a run has measured so far, for observers that pool several runs.
 
 /// The run's answer so far: the transport rate over the averaging window the run found in
-/// its own series ([`Stepper::answer`]).
+/// its own series ([`super::Stepper::answer`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Answer {
     /// start of the window (s)
