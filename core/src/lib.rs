@@ -30,7 +30,7 @@ pub mod scene;
 pub use closure::drag::DragLaw;
 pub use closure::fluctuation::{DriftForm, FlowScales, Fluctuation, FluctuationDraw, ParticleSlip, TurbulencePoint};
 pub use closure::granular::{
-    GranularStress, JohnsonJacksonElastic, KineticCoefficients, KineticTheory, LocalRheology, LocalState,
+    Grains, GranularStress, JohnsonJacksonElastic, KineticCoefficients, KineticTheory, LocalRheology, LocalState,
     SaltationInput,
 };
 pub use closure::hindrance::{DragReynolds, Hindrance};

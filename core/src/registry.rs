@@ -38,13 +38,6 @@ pub fn models_of(family: Family) -> Vec<&'static ModelEntry> {
     models().into_iter().filter(|m| m.family == family).collect()
 }
 
-/// Comma-separated names of a family's models (for error messages): the compiled ones,
-/// then those registered at run time ([`crate::runtime`]).
-pub fn known_names(family: Family) -> String {
-    let runtime = crate::runtime::models(Some(family));
-    models_of(family).iter().map(|m| m.name).chain(runtime.iter().map(|m| m.name)).collect::<Vec<_>>().join(", ")
-}
-
 /// Register a model: `register_model!(Family::Drag, "dallavalle", DragLaw, Dallavalle);`
 /// The type must implement `Default`, `Describe` and the family trait (whose trait-object
 /// type is given so that the TOML form carries the `type` tag).

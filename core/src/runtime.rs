@@ -496,6 +496,18 @@ pub fn models(family: Option<Family>) -> Vec<Arc<RuntimeModel>> {
     v
 }
 
+/// Comma-separated names of a family's models (for error messages): the compiled ones
+/// ([`crate::registry`]), then those registered at run time.
+pub fn known_names(family: Family) -> String {
+    let runtime = models(Some(family));
+    crate::registry::models_of(family)
+        .iter()
+        .map(|m| m.name)
+        .chain(runtime.iter().map(|m| m.name))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 static PYTHON_HOST: AtomicBool = AtomicBool::new(false);
 
 /// Declare that this process runs a Python interpreter that imports a scene's `[python]

@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import List, Optional
 
 from . import _native
-from .closures import import_modules
+from ._run import import_modules
 
 
 def _scene_and_overrides(args: List[str]) -> "tuple[Optional[str], List[str]]":

@@ -1,11 +1,12 @@
-"""Closures of the granular, turbulence and fluctuation families written in Python.
+"""Closures written in Python: each function registers a model that scenes then name by
+``type = name`` in ``[closures.<family>]``, in both solvers.
 
-Each function registers a model that scenes then name by ``type = name`` in
-``[closures.<family>]``, in both solvers, as :func:`saltus.register_closure` does for drag,
-hindrance, viscosity and side-wall friction. Every face is a numpy function called once
-per batch the solver evaluates, with named float64 arrays in and named float64 arrays
-out; the parameters (``params=``, as for :func:`saltus.register_closure`) and the face's
-scalar keywords are passed as keyword floats.
+:func:`register_closure` registers a drag, hindrance, viscosity or side-wall friction law
+(one function of arrays; :func:`unregister_closure` removes it); the other functions
+register the granular, turbulence and fluctuation families. Every face is a numpy
+function called once per batch the solver evaluates, with named float64 arrays in and
+named float64 arrays out; the parameters (``params=``, as for :func:`register_closure`)
+and the face's scalar keywords are passed as keyword floats.
 
 =====================  =========================  ==========================  =====================================
 function               inputs (arrays)            outputs                     keywords (floats)
@@ -53,11 +54,18 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence
 
 from . import _native
 
-__all__ = ["register_rheology", "register_kinetic_theory", "register_mixing_length", "register_fluctuation"]
+__all__ = [
+    "register_closure",
+    "unregister_closure",
+    "register_rheology",
+    "register_kinetic_theory",
+    "register_mixing_length",
+    "register_fluctuation",
+]
 
 
 def _described(function: Any, source: Optional[str], equation: Optional[str]) -> "tuple[str, str]":
-    # as register_closure: the function's module and name, the first line of its docstring
+    # where not given: the function's module and name, the first line of its docstring
     if source is None:
         module = getattr(function, "__module__", None) or "?"
         qualname = getattr(function, "__qualname__", None) or type(function).__name__
@@ -70,6 +78,108 @@ def _described(function: Any, source: Optional[str], equation: Optional[str]) ->
 
 def _params(params: Optional[Mapping[str, Any]]) -> Optional[Dict[str, Any]]:
     return None if params is None else dict(params)
+
+
+def register_closure(
+    family: str,
+    name: str,
+    evaluate: Any,
+    params: Optional[Mapping[str, Any]] = None,
+    *,
+    source: Optional[str] = None,
+    equation: Optional[str] = None,
+    limits: Optional[List[Any]] = None,
+    reynolds: str = "interstitial",
+    depends_on_reynolds: bool = True,
+) -> None:
+    """Register a closure written in Python: scenes then name it by ``type = name`` in
+    ``[closures.<family>]`` (scene files and ``set=`` overrides alike), in both solvers;
+    :func:`models` lists it and :func:`closure_check` checks it.
+
+    ``evaluate`` is called with the family's inputs as keyword float64 arrays of one
+    length (the names :class:`Closure` takes) and every parameter as a keyword float, and
+    returns the family's outputs: a dict ``{"cd": array}``, or for one output the array
+    itself, float64 of the inputs' length, every value finite.
+
+    ==========  ====================================  ===========
+    family      inputs                                outputs
+    ==========  ====================================  ===========
+    drag        re_p                                  cd
+    hindrance   phi, re_p (interstitial Re_p)         factor
+    viscosity   phi                                   nu_ratio
+    ==========  ====================================  ===========
+
+    The other families (granular, turbulence, fluctuation) are refused: their traits are
+    not functions of arrays (a packing inverse solved by bisection, column views and
+    transported fields, a seeded random draw per particle).
+
+    Example, Dallavalle drag (Chassagne et al. 2023 eq 2.11a)::
+
+        def dallavalle(re_p, cd_inf, a):
+            return cd_inf + a / re_p
+
+        saltus.register_closure("drag", "py_dallavalle", dallavalle,
+            params={"cd_inf": {"default": 0.4, "range": "[0, 10]", "unit": "-",
+                               "description": "C_D at infinite Re_p"},
+                    "a": {"default": 24.4, "range": "(0, 100]", "unit": "-",
+                          "description": "viscous coefficient"}},
+            limits=[("stokes", "a"), "high_reynolds", "decreasing"])
+        saltus.run("case.toml", set={"closures.drag.type": "py_dallavalle"})
+
+    Args:
+        family: ``drag``, ``hindrance`` or ``viscosity``.
+        name: the ``type`` scenes use: letters, digits and ``_``, not a built-in name of
+            the family. Registering a name again replaces it (a notebook cell run
+            again); models already loaded keep the function they were built with.
+        evaluate: the function (called once per batch the solver evaluates: a column of
+            the Eulerian solver, a chunk of 256 particles of the DEM; never per cell).
+        params: parameter name -> default, or -> dict of ``default``, ``range`` (an
+            interval ``"(0, 100]"``, ``"[0, inf)"``, or a closed pair ``(lo, hi)``),
+            ``unit`` and ``description``. A scene's value outside the range is refused,
+            as an unknown key is, naming the file and the key.
+        source: where the law comes from (default: the function's module and name).
+        equation: the law, one line (default: the first line of the function's
+            docstring).
+        limits: what :func:`closure_check` verifies: ``"high_reynolds"`` (drag: C_D ->
+            its value at Re_p = 1e150), ``"dilute"`` (hindrance, viscosity: -> 1 as phi
+            -> 0), ``"decreasing"``, ``"increasing"``, ``("stokes", x)`` (drag: C_D Re_p
+            -> x as Re_p -> 0), ``("einstein", x)`` (viscosity: 1 + x phi); x a number or
+            a parameter's name.
+        reynolds: hindrance only, the Reynolds number at which the drag law's C_D is
+            evaluated: ``"interstitial"`` (Re_p) or ``"superficial"`` ((1 - phi) Re_p).
+        depends_on_reynolds: hindrance only; False lets the DEM evaluate the factor per
+            fluid cell (with re_p = 0) instead of per particle, as for the built-in
+            Richardson-Zaki.
+
+    How the solvers use it: C_D Re_p is C_D(r) r at r = max(Re_p, 1e-12) (finite at
+    rest); C_D^inf is C_D at Re_p = 1e150, taken when the scene loads. Python is entered
+    with the GIL held for each batch: a run with such a closure is not parallel in it.
+
+    Raises:
+        ValueError: an unknown or refused family, a name that is not usable, a default
+            outside its range, an unknown limit.
+        TypeError: ``evaluate`` is not callable, a parameter is not a number.
+
+    During a run, an exception raised by ``evaluate``, or outputs of the wrong shape or
+    dtype or not finite, end the run: :func:`run` raises :class:`RunError` with the
+    message (the exception's included).
+    """
+    source, equation = _described(evaluate, source, equation)
+    if params is not None and not isinstance(params, dict):
+        params = dict(params)
+    _native.register_closure(
+        family, name, evaluate, params, source, equation, limits, reynolds, bool(depends_on_reynolds)
+    )
+
+
+def unregister_closure(family: str, name: str) -> bool:
+    """Remove a closure registered with :func:`register_closure`; whether there was one.
+    Scenes loaded afterwards no longer know the name; models already loaded keep it.
+
+    Raises:
+        ValueError: an unknown family.
+    """
+    return _native.unregister_closure(family, name)
 
 
 def register_rheology(
@@ -278,33 +388,3 @@ def register_fluctuation(
         None if limits is None else list(limits),
         {"variates": None if variates is None else dict(variates), "needs": list(needs)},
     )
-
-
-def import_modules(paths: List[str]) -> None:
-    """Import the Python files or modules a scene's ``[python] modules`` names (absolute
-    paths, as the scene loader resolves them), each once per process: a file is executed
-    as a module named after its path, a dotted name is imported. Registering again on a
-    second import is harmless (a registration replaces one of the same name)."""
-    import importlib
-    import importlib.util
-    import sys
-    from pathlib import Path
-
-    for p in paths:
-        if p.endswith(".py") or "/" in p or "\\" in p:
-            path = Path(p)
-            key = "saltus_scene_module_" + "".join(c if c.isalnum() else "_" for c in str(path))
-            if key in sys.modules:
-                continue
-            spec = importlib.util.spec_from_file_location(key, path)
-            if spec is None or spec.loader is None:
-                raise ImportError(f"{path}: not a Python file")
-            module = importlib.util.module_from_spec(spec)
-            sys.modules[key] = module
-            try:
-                spec.loader.exec_module(module)
-            except BaseException:
-                del sys.modules[key]
-                raise
-        else:
-            importlib.import_module(p)

@@ -28,6 +28,8 @@ from typing import Any, Dict, List, Optional, Union
 import numpy as np
 
 from . import _native
+from ._calibrate import CalibrationResult
+from ._run import fspath
 
 
 @dataclass
@@ -83,8 +85,6 @@ class PosteriorResult:
 
 
 def _calibration_json(calibration) -> Dict[str, Any]:
-    from ._study import CalibrationResult
-
     if isinstance(calibration, CalibrationResult):
         path = calibration.out / "calibration.json"
     else:
@@ -143,10 +143,8 @@ def posterior(
         import emcee
     except ImportError:
         raise ImportError("saltus.posterior samples with emcee: pip install emcee") from None
-    from . import _path
-
     j = _calibration_json(calibration)
-    misfit = _native.Misfit(_path(file, "file"), set)
+    misfit = _native.Misfit(fspath(file, "file"), set)
     keys = misfit.keys
     got = [p["key"] for p in j["parameters"]]
     if got != keys:

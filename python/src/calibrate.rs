@@ -6,7 +6,8 @@ use std::path::PathBuf;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::{overrides, RunError, SceneError};
+use crate::convert::overrides;
+use crate::errors::{RunError, SceneError};
 
 /// `saltus calibrate FILE`: with `check`, the file checked as a run would and a line of
 /// what it would fit; else the calibration run into `out` (default `out/<meta.name>`),

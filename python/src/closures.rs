@@ -19,7 +19,8 @@ use saltus_core::param::{number, Bound as End, ParamRange};
 use saltus_core::runtime::{self, BatchFunction, Control, Face, RuntimeLimit, RuntimeModel, Shape, Variate};
 use saltus_core::{DragReynolds, Field, Limit, Needs, Param};
 
-use crate::{json_to_py, py_to_toml, SceneError};
+use crate::convert::{json_to_py, py_to_toml};
+use crate::errors::SceneError;
 
 /// A Python function as the law (one face) of a run-time closure.
 struct PyFunction {
@@ -566,8 +567,8 @@ pub fn scene_modules(
     scene: std::path::PathBuf,
     set: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Vec<String>> {
-    let set = crate::overrides(set)?;
-    saltus_core::scene::Scene::python_modules(&scene, &set).map_err(|e| crate::load_error(py, e))
+    let set = crate::convert::overrides(set)?;
+    saltus_core::scene::Scene::python_modules(&scene, &set).map_err(|e| crate::errors::load_error(py, e))
 }
 
 /// The command line on `args` (the program name first) in this process, with the GIL

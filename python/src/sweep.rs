@@ -7,7 +7,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use saltus::sweep;
 
-use crate::{overrides, toml_to_py, SceneError};
+use crate::convert::{overrides, toml_to_py};
+use crate::errors::SceneError;
 
 fn sweep_error(e: anyhow::Error) -> PyErr {
     SceneError::new_err(saltus::describe(&e))

@@ -1,6 +1,7 @@
 //! What a run leaves behind: cell profiles, a summary, the resolved scene and a manifest.
 //! One contract for both solvers.
 
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -187,9 +188,43 @@ pub struct Summary {
     /// step: over `total_steps`)
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub neighbour_builds: Option<usize>,
-    /// wall time of the run in this process by stage ([`crate::run::timing::Timing`])
+    /// wall time of the run in this process by stage ([`Timing`])
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub timing: Option<crate::run::timing::Timing>,
+    pub timing: Option<Timing>,
+}
+
+/// The wall time of a run by stage, as written in `summary.json`: the solver's stages,
+/// the driver's `output` (the observers: time series, snapshots, checkpoints, ParaView)
+/// and `other` (the rest of the run's wall time: set-up, the progress display, the loop),
+/// which add up to `wall`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Timing {
+    /// wall time of the run in this process (s)
+    pub wall: f64,
+    /// seconds per stage
+    pub stages: BTreeMap<String, f64>,
+}
+
+impl Timing {
+    /// The timing of a run of `wall` seconds whose solver counted `solver` and whose
+    /// observers took `output` seconds; `other` is what remains.
+    pub fn new(wall: f64, solver: impl Iterator<Item = (&'static str, f64)>, output: f64) -> Self {
+        let mut stages: BTreeMap<String, f64> = solver.map(|(k, v)| (k.to_string(), v)).collect();
+        stages.insert("output".into(), output);
+        let counted: f64 = stages.values().sum();
+        stages.insert("other".into(), (wall - counted).max(0.0));
+        Self { wall, stages }
+    }
+
+    /// One line: the stages by decreasing time with their share of the wall time.
+    pub fn line(&self) -> String {
+        let mut v: Vec<(&String, &f64)> = self.stages.iter().filter(|(_, s)| **s > 0.0).collect();
+        v.sort_by(|a, b| b.1.total_cmp(a.1));
+        let total = self.wall.max(f64::MIN_POSITIVE);
+        let parts: Vec<String> =
+            v.iter().map(|(k, s)| format!("{k} {:.3} s ({:.1} %)", s, 100.0 * **s / total)).collect();
+        format!("wall time {:.3} s: {}", self.wall, parts.join(", "))
+    }
 }
 
 /// `manifest.json`: enough to reproduce the run.
@@ -224,6 +259,9 @@ fn io(file: PathBuf) -> impl FnOnce(std::io::Error) -> Error {
 /// The files [`write_run`] writes, with the time series, in the order of the manifest.
 pub const RUN_FILES: [&str; 5] = ["profiles.csv", "summary.json", "scene.toml", "manifest.json", "timeseries.csv"];
 
+/// File name of the checkpoint in its folder ([`crate::run::checkpoint`]).
+pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
+
 /// Refuse an output folder `dir` that is an empty path, or where a file the run writes
 /// ([`RUN_FILES`], the checkpoint) is one of the run's inputs (the scene file, a reference
 /// file). The resolved scene may be rewritten over the scene file it was resolved from
@@ -240,7 +278,7 @@ pub fn check_out(dir: &Path, scene: &Scene) -> Result<(), Error> {
     let inputs = std::iter::once(("the scene file", scene.path.clone()))
         .chain(scene.reference.iter().map(|r| ("the reference file", PathBuf::from(&r.file))));
     for (what, input) in inputs {
-        for name in RUN_FILES.iter().chain([&crate::run::checkpoint::FILE]) {
+        for name in RUN_FILES.iter().chain([&CHECKPOINT_FILE]) {
             let written = dir.join(name);
             if !same(&written, &input) {
                 continue;

@@ -43,6 +43,7 @@
 //! optimum and every other one refitted; where chi^2 is quadratic it is
 //! ((p - p_opt) / stderr_statistical)^2.
 
+mod bounds;
 mod figures;
 mod model;
 mod optimise;

@@ -166,7 +166,7 @@ impl Problem {
                     format!("[{lo}, {hi}] exclude the start {s} (the base scene's `{}`)", p.key),
                 ));
             }
-            if !super::optimise::resolves(s, p.bounds) {
+            if !super::bounds::resolves(s, p.bounds) {
                 return Err(key_error(
                     file,
                     format!("parameter[{i}].bounds"),

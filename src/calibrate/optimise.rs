@@ -1,9 +1,9 @@
 //! The minimisation: Levenberg-Marquardt (the MINPACK `lmder` trust-region algorithm of
 //! Moré 1978, as the `levenberg-marquardt` crate implements it) on the misfit's residuals,
-//! inside the bounds by the transformation of MINUIT (James & Roos 1975; the one lmfit
-//! uses): p = lo + (hi - lo) (sin u + 1) / 2, u free. The Jacobian is taken by central
-//! differences in p, its columns' runs in parallel, each run warm-started from one
-//! anchor state so that every run is a function of its constants alone.
+//! inside the bounds by the transformation of MINUIT (`bounds.rs`), u free. The Jacobian
+//! is taken by central differences in p, its columns' runs in parallel, each run
+//! warm-started from one anchor state so that every run is a function of its constants
+//! alone.
 
 use std::sync::Mutex;
 
@@ -11,31 +11,8 @@ use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt, TerminationRe
 use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
 use rayon::prelude::*;
 
+use super::bounds::{dp_du, to_p, to_u};
 use super::model::{Fit, Problem};
-
-/// p of u inside [lo, hi].
-fn to_p(u: f64, [lo, hi]: [f64; 2]) -> f64 {
-    lo + (hi - lo) * (u.sin() + 1.0) / 2.0
-}
-
-/// u of p (p inside the bounds).
-fn to_u(p: f64, [lo, hi]: [f64; 2]) -> f64 {
-    (2.0 * (p - lo) / (hi - lo) - 1.0).clamp(-1.0, 1.0).asin()
-}
-
-/// Whether the transformation carries `p` inside `bounds` to u and back to within 1e-9
-/// of its size: bounds so wide against the start that it is lost (or whose span
-/// overflows) leave the optimiser no resolution where it begins.
-pub fn resolves(p: f64, bounds: [f64; 2]) -> bool {
-    let span = bounds[1] - bounds[0];
-    let scale = if p != 0.0 { p.abs() } else { span };
-    span.is_finite() && (to_p(to_u(p, bounds), bounds) - p).abs() <= 1e-9 * scale
-}
-
-/// dp/du at u.
-fn dp_du(u: f64, [lo, hi]: [f64; 2]) -> f64 {
-    (hi - lo) * u.cos() / 2.0
-}
 
 /// The Jacobian of the residuals in p at `p` (central differences of `step` times each
 /// bound's span, one-sided at a bound), its runs in parallel; the residuals at `p` come
@@ -235,36 +212,4 @@ pub fn minimise(problem: &Problem, start: &[f64], free: &[usize], budget: usize,
         converged: report.termination.was_successful(),
         evaluations: used,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_bounds_transformation_is_inverted_and_stays_inside() {
-        let b = [0.2, 3.0];
-        for p in [0.2000001, 0.5, 1.7, 2.9999] {
-            let u = to_u(p, b);
-            assert!((to_p(u, b) - p).abs() < 1e-12);
-            let h = 1e-7;
-            let fd = (to_p(u + h, b) - to_p(u - h, b)) / (2.0 * h);
-            assert!((fd - dp_du(u, b)).abs() < 1e-6);
-        }
-        for u in [-10.0, -1.0, 0.0, 2.0, 100.0] {
-            let p = to_p(u, b);
-            assert!((0.2..=3.0).contains(&p));
-        }
-    }
-
-    #[test]
-    fn bounds_too_wide_for_the_start_are_told_apart() {
-        assert!(resolves(0.05, [0.01, 0.5]));
-        assert!(resolves(0.0, [-1.0, 1.0]));
-        assert!(resolves(1e-3, [0.0, 1.0]));
-        // the start is lost in the span: u maps back to the lower bound
-        assert!(!resolves(0.05, [0.01, 1e308]));
-        // the span overflows
-        assert!(!resolves(0.0, [-1e308, 1e308]));
-    }
 }

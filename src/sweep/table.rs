@@ -171,7 +171,10 @@ pub fn pool(values: &[f64]) -> Option<Pooled> {
     if n == 0 {
         return None;
     }
-    let mean = values.iter().sum::<f64>() / n as f64;
+    // shifted by the first value, so that equal values pool to that value and a zero
+    // error exactly (the plain sum over n can land an ulp off it)
+    let first = values[0];
+    let mean = first + values.iter().map(|v| v - first).sum::<f64>() / n as f64;
     let sem = (n > 1).then(|| {
         let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
         (var / n as f64).sqrt()
@@ -270,6 +273,9 @@ mod tests {
     fn pooled_errors_follow_the_error_of_a_mean() {
         let e = pool_errors(&[0.2, 0.2, 0.2, 0.2]).unwrap();
         assert!((e - 0.1).abs() < 1e-15);
+        let x = 2.5317272746920922;
+        let p = pool(&[x, x, x]).unwrap();
+        assert_eq!((p.mean, p.sem), (x, Some(0.0)));
         let p = pool(&[1.0, 2.0, 3.0]).unwrap();
         assert_eq!((p.n, p.mean), (3, 2.0));
         assert!((p.sem.unwrap() - 1.0 / 3f64.sqrt()).abs() < 1e-15);

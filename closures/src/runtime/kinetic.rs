@@ -11,7 +11,6 @@
 //! (eq 3.1-3.2).
 
 use saltus_core::runtime::Shape;
-use saltus_core::scene::Particles;
 use saltus_core::{GranularStress, JohnsonJacksonElastic, KineticCoefficients, KineticTheory, SaltationInput};
 
 use super::local::UNSET_GRAIN;
@@ -146,7 +145,7 @@ impl GranularStress for RuntimeKinetic {
         Some(self)
     }
 
-    fn inherit(&mut self, _given: &toml::Table, particles: &Particles) {
+    fn inherit(&mut self, _given: &toml::Table, particles: &saltus_core::Grains) {
         self.grain = [particles.diameter, particles.density, particles.restitution, particles.friction];
         self.built_in.restitution = particles.restitution;
         self.built_in.friction = particles.friction;

@@ -11,7 +11,6 @@
 //! closed form is.
 
 use saltus_core::runtime::{Control, Shape};
-use saltus_core::scene::Particles;
 use saltus_core::{GranularStress, LocalRheology, LocalState};
 
 use super::{as_runtime_closure, RuntimeClosure};
@@ -172,7 +171,7 @@ impl GranularStress for RuntimeLocal {
         Some(self)
     }
 
-    fn inherit(&mut self, _given: &toml::Table, particles: &Particles) {
+    fn inherit(&mut self, _given: &toml::Table, particles: &saltus_core::Grains) {
         self.grain = [particles.diameter, particles.density, particles.restitution, particles.friction];
     }
 }

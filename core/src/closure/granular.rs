@@ -292,6 +292,20 @@ pub trait KineticTheory: Send + Sync {
     }
 }
 
+/// The grain properties of `[particles]` that a granular closure may take as its defaults
+/// ([`GranularStress::inherit`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Grains {
+    /// diameter d (m)
+    pub diameter: f64,
+    /// density rho_p (kg/m^3)
+    pub density: f64,
+    /// normal restitution coefficient e
+    pub restitution: f64,
+    /// interparticle friction coefficient mu_p
+    pub friction: f64,
+}
+
 /// A granular stress closure: exactly one of [`GranularStress::as_local`] and
 /// [`GranularStress::as_kinetic`] returns `Some`.
 #[typetag::serde(tag = "type")]
@@ -307,7 +321,7 @@ pub trait GranularStress: Describe + Send + Sync + std::fmt::Debug {
     /// Take the grain properties this closure does not set itself from `[particles]`;
     /// `given` is the closure's own table, to tell a key set from a default. Called once
     /// at load, before the range check, so that the resolved scene shows the values used.
-    fn inherit(&mut self, _given: &toml::Table, _particles: &crate::scene::Particles) {}
+    fn inherit(&mut self, _given: &toml::Table, _grains: &Grains) {}
     /// Fields this closure makes available to others (granular temperature for kinetic
     /// theory).
     fn provides(&self) -> Needs {

@@ -80,7 +80,9 @@ pub fn granular_from_value(
     file: &Path,
     key: &str,
 ) -> Result<Box<dyn GranularStress>> {
-    closure_with(value, Family::Granular, file, key, |m: &mut Box<dyn GranularStress>, t| m.inherit(t, particles))
+    closure_with(value, Family::Granular, file, key, |m: &mut Box<dyn GranularStress>, t| {
+        m.inherit(t, &particles.grains())
+    })
 }
 
 /// [`closure_from_value`] with `prepare` called on the model and its table between
@@ -122,7 +124,7 @@ where
         None => {
             return Err(key_err(
                 format!("{key}.type"),
-                format!("missing; known {family} models: {}", registry::known_names(family)),
+                format!("missing; known {family} models: {}", runtime::known_names(family)),
             ))
         }
     };
@@ -137,7 +139,7 @@ where
             key: format!("{key}.type"),
             family: family.to_string(),
             name,
-            known: registry::known_names(family),
+            known: runtime::known_names(family),
         });
     };
     let mut params = table.clone();
@@ -370,7 +372,7 @@ impl Closures {
             c.viscosity = Some(closure_from_value(v, Family::Viscosity, file, &k)?);
         }
         if let Some((v, k)) = take(Family::Granular) {
-            let inherit = |m: &mut Box<dyn GranularStress>, t: &toml::Table| m.inherit(t, particles);
+            let inherit = |m: &mut Box<dyn GranularStress>, t: &toml::Table| m.inherit(t, &particles.grains());
             c.granular = Some(closure_with(v, Family::Granular, file, &k, inherit)?);
         }
         if let Some((v, k)) = take(Family::Turbulence) {

@@ -5,8 +5,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::check;
-use super::solver::{key_error, MAX_TIME};
+use super::{check, key_error, MAX_TIME};
 use crate::error::Result;
 use crate::param::ParamRange;
 

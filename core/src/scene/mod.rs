@@ -48,13 +48,22 @@ pub use presets::{Accuracy, Preset};
 pub use python::Python;
 pub use solver::{
     default_elastic_phi_rlp, Bottom, EulerianSettings, FluidMode, Initial, LagrangianSettings, ParticleSpec, Solver,
-    SolverKind, Surface, TimeStepping, ELASTIC_PHI_RLP, MAX_TIME,
+    SolverKind, Surface, TimeStepping, ELASTIC_PHI_RLP,
 };
 use tables::STIFFNESS;
 pub use tables::{
     Contact, ContactModel, Drive, Fluid, Meta, NormalForce, Output, Particles, Physics, Reference, ShieldsWeight,
     TangentialHistory, MAX_PHASES, MAX_SNAPSHOTS, MAX_TIMESERIES_ROWS, TIMESERIES_ROWS,
 };
+
+/// Longest simulated time of either solver (s): about 30 years, a bound that keeps
+/// step counts and times finite.
+pub const MAX_TIME: f64 = 1.0e9;
+
+/// An [`Error::Key`] at `key` of `file`.
+pub(crate) fn key_error(file: &Path, key: &str, message: impl Into<String>) -> Error {
+    Error::Key { file: file.into(), key: key.into(), message: message.into() }
+}
 
 /// Packing the DEM counts the particles of a bed with when `domain.bed_phi` is absent.
 pub const DEM_BED_PHI: f64 = 0.6;

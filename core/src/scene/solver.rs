@@ -6,8 +6,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::check;
-use crate::error::{Error, Result};
+use super::{check, MAX_TIME};
+use crate::error::Result;
 use crate::param::ParamRange;
 
 pub use super::lagrangian::{Bottom, FluidMode, Initial, LagrangianSettings, ParticleSpec, Surface};
@@ -65,6 +65,10 @@ pub struct EulerianSettings {
     pub dt_min: f64,
     /// largest change of phi in one cell per step; a larger one rejects the step
     pub max_phi_change: f64,
+    /// relative change of the fields per step (the steady residual times the step) that
+    /// the growth of a steady march's time step aims at; the steady state does not
+    /// depend on it, the number of steps to it does
+    pub target_field_change: f64,
     /// cap on the number of accepted steps
     pub max_steps: usize,
     /// shear rate (1/s) regularising the rate-independent (Coulomb) stresses:
@@ -98,11 +102,12 @@ pub enum TimeStepping {
     /// at the steady state (`steady_tolerance`, `steady_steps`) or the end time
     #[default]
     Steady,
-    /// the momentum of both phases by the variable-step second-order backward
-    /// differentiation formula (BDF2) at a step of at most `dt_max`, limited by the phi
-    /// changes only (shorter after a rejection, or to land on the end time), no steady ending: the run follows a time-dependent
-    /// forcing to the end time. The volume fraction, granular temperature and k-omega
-    /// steps stay backward Euler (first order).
+    /// every transported field (momentum of both phases, phi, granular temperature, k and
+    /// omega) by the variable-step second-order backward differentiation formula (BDF2),
+    /// the coefficients at the extrapolation of the last two states, at a step of at most
+    /// `dt_max`, limited by the phi changes only (shorter after a rejection, or to land on
+    /// the end time), no steady ending: the run follows a time-dependent forcing to the end
+    /// time.
     Accurate,
 }
 
@@ -116,6 +121,7 @@ impl Default for EulerianSettings {
             dt_max: 1.0,
             dt_min: 1e-9,
             max_phi_change: 0.02,
+            target_field_change: 0.5,
             max_steps: 2_000_000,
             shear_rate_regularisation: 1e-4,
             eddy_relaxation: 0.5,
@@ -128,10 +134,6 @@ impl Default for EulerianSettings {
     }
 }
 
-/// Longest simulated time of either solver (s): about 30 years, a bound that keeps
-/// step counts and times finite.
-pub const MAX_TIME: f64 = 1.0e9;
-
 impl EulerianSettings {
     pub(super) fn check(&self, f: &Path) -> Result<()> {
         let p = |k: &str| format!("solver.eulerian.{k}");
@@ -142,6 +144,7 @@ impl EulerianSettings {
         check(f, &p("dt_max"), self.dt_max, ParamRange::open_closed(0.0, MAX_TIME))?;
         check(f, &p("dt_min"), self.dt_min, ParamRange::open(0.0, self.dt_initial.min(self.dt_max)))?;
         check(f, &p("max_phi_change"), self.max_phi_change, ParamRange::open_closed(0.0, 0.5))?;
+        check(f, &p("target_field_change"), self.target_field_change, ParamRange::open_closed(0.0, 10.0))?;
         check(f, &p("max_steps"), self.max_steps as f64, ParamRange::closed(1.0, 1e12))?;
         check(f, &p("shear_rate_regularisation"), self.shear_rate_regularisation, ParamRange::open_closed(0.0, 1e6))?;
         check(f, &p("eddy_relaxation"), self.eddy_relaxation, ParamRange::open_closed(0.0, 1.0))?;
@@ -163,9 +166,4 @@ pub const ELASTIC_PHI_RLP: f64 = 0.57;
 /// phi_c <= 0.57) and is unchanged for the usual phi_c >= 0.61.
 pub fn default_elastic_phi_rlp(phi_max: f64) -> f64 {
     ELASTIC_PHI_RLP.min(phi_max * ELASTIC_PHI_RLP / 0.61)
-}
-
-/// An [`Error::Key`] at `key` of `file`.
-pub(super) fn key_error(file: &Path, key: &str, message: impl Into<String>) -> Error {
-    Error::Key { file: file.into(), key: key.into(), message: message.into() }
 }

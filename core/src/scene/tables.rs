@@ -191,6 +191,16 @@ const RIGID_OVERLAP: f64 = 4.0e-4;
 pub(super) const STIFFNESS: ParamRange = ParamRange::closed(1e-6, 1e12);
 
 impl Particles {
+    /// The properties a granular closure inherits ([`crate::GranularStress::inherit`]).
+    pub fn grains(&self) -> crate::Grains {
+        crate::Grains {
+            diameter: self.diameter,
+            density: self.density,
+            restitution: self.restitution,
+            friction: self.friction,
+        }
+    }
+
     /// Default normal stiffness of the linear law (N/m) in the rigid limit: the weight
     /// of the bed column over one grain, P d^2 with P = (rho_p - rho_f) g phi H (rho_f
     /// = 0 when `dry`; H the bed height, at least 10 d), compresses a contact by

@@ -3,6 +3,7 @@
 use saltus_core::closure::turbulence::TwoEquation;
 use saltus_core::{ColumnView, Turbulence, WallFriction};
 
+use super::bdf2::Bdf2;
 use super::operator::ColumnOperator;
 use super::params::{Closures, ColumnParams, Coupling, TopBoundary};
 use super::tridiagonal::Tridiagonal;
@@ -388,7 +389,7 @@ impl FluidColumn {
                 kw.drag[i] = if phi > 1e-12 { self.beta[i] / phi } else { 0.0 };
             }
         }
-        let result = kw.advance(model, &self.op, &physics, &self.phi, &self.u, &self.dudz, self.ratio[0], dt);
+        let result = kw.advance(model, &self.op, &physics, &self.phi, &self.u, &self.dudz, self.ratio[0], dt, None);
         let zc = self.op.grid().centres();
         result.map_err(|f| ColumnError::TwoEquation {
             field: f.field,
@@ -512,9 +513,9 @@ impl FluidColumn {
             let mut tm = (1.0 - self.phi[i]) * rho * dzi * inv_dt;
             let mut old = self.u[i];
             if let Some(w) = bdf2.filter(|&w| w > 0.0) {
-                let scale = (1.0 + 2.0 * w) / (1.0 + w);
-                old = ((1.0 + w) * self.u[i] - w * w / (1.0 + w) * self.previous[i]) / scale;
-                tm *= scale;
+                let b = Bdf2::new(w);
+                old = b.old(self.u[i], self.previous[i]);
+                tm *= b.scale();
             }
             let b = self.beta[i] * dzi;
             t.lower[i] = 0.0;

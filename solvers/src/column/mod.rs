@@ -88,6 +88,7 @@
 //! the field) and a non-finite u_f after a solve is an error naming the time, the cell and
 //! the field, never a panic.
 
+pub mod bdf2;
 mod fluid;
 mod grid;
 pub mod k_omega;

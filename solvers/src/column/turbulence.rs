@@ -5,7 +5,7 @@
 use saltus_core::closure::turbulence::{TwoEquation, TwoEquationInput};
 use saltus_core::{ColumnView, Turbulence};
 
-use super::k_omega::{ColumnGeometry, KOmegaColumn, TransportFailure};
+use super::k_omega::{Before, ColumnGeometry, KOmegaColumn, TransportFailure};
 use super::operator::ColumnOperator;
 
 /// Friction velocity of the driving over a flow of depth `depth` (m/s):
@@ -124,7 +124,8 @@ impl KOmegaRun {
         Self { col, drag: vec![0.0; n], dphidz: vec![0.0; n] }
     }
 
-    /// One backward-Euler step of k and omega (Cheng et al. eqs 21-35) with the shear rate
+    /// One backward-Euler step of k and omega (or a BDF2 step given the fields one step
+    /// back, [`KOmegaColumn::advance`]) (Cheng et al. eqs 21-35) with the shear rate
     /// `shear` of the velocity `u` (whose wall gradient gives the wall friction velocity of
     /// eq 31 with the viscosity nu_f `ratio0` of the wall cell; nu_t vanishes at a wall),
     /// the volume fraction `phi` and [`KOmegaRun::drag`].
@@ -139,6 +140,7 @@ impl KOmegaRun {
         shear: &[f64],
         ratio0: f64,
         dt: f64,
+        before: Option<Before<'_>>,
     ) -> Result<(), TransportFailure> {
         let n = phi.len();
         let zc = op.grid().centres();
@@ -165,7 +167,7 @@ impl KOmegaRun {
             friction_velocity: physics.friction_velocity,
         };
         let geometry = ColumnGeometry { z: zc, dz: op.grid().dz() };
-        self.col.advance(model, &input, geometry, wall_u_star, dt)
+        self.col.advance(model, &input, geometry, wall_u_star, dt, before)
     }
 
     /// Largest change of k over the last step relative to its maximum.

@@ -67,7 +67,8 @@
 //!   so T >= 0 under any time step.
 //!
 //! The time step adapts: it grows while phi changes by less than half of
-//! `solver.eulerian.max_phi_change` and fields by less than 20 % per step, and a step that would
+//! `solver.eulerian.max_phi_change` and fields by less than `solver.eulerian.target_field_change`
+//! (50 %) per step, and a step that would
 //! make phi negative or reach the maximum packing, or produce a non-finite value, is
 //! rejected and retried with 0.3 dt. Below `solver.eulerian.dt_min` the run stops and names the
 //! time, the cell and the field. The run is steady when the largest relative rate of
@@ -102,6 +103,7 @@ mod stress;
 mod temperature;
 mod volume_fraction;
 mod warm;
+mod workspace;
 
 pub use block::BlockTridiagonal;
 pub use config::{Config, Domain, Settings, Top};

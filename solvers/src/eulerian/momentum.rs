@@ -2,15 +2,14 @@
 //! block-tridiagonal backward-Euler (or BDF2) solve with the drag implicit, each phase's
 //! diffusion and wall rows assembled by the shared [`crate::column::ColumnOperator`].
 //!
-//! BDF2 with a variable step (ratio w = dt_n / dt_{n-1}) is a backward-Euler row with the
-//! time derivative (1 + 2w)/(1 + w) u^{n+1} - (1 + w) u^n + w^2/(1 + w) u^{n-1} over dt_n
-//! (Hairer & Wanner, Solving ODEs II, section III.5, eq 5.9 for k = 2): the mass term is
-//! scaled and the old velocity replaced by the combination, so that the same assembly
-//! serves both.
+//! BDF2 with a variable step is a backward-Euler row with the mass term scaled and the old
+//! velocity replaced by a combination of the last two ([`crate::column::bdf2`]), so that
+//! the same assembly serves both.
 
 use super::block::BlockTridiagonal;
 use super::config::Top;
 use super::{Eulerian, PHI_FLOOR};
+use crate::column::bdf2::Bdf2;
 use crate::column::Band;
 use crate::run::Breakdown;
 
@@ -35,8 +34,9 @@ impl Band for Phase<'_> {
 impl Eulerian<'_> {
     /// Step `dt` of the coupled streamwise momentum of both phases under the pressure
     /// gradient `grad` (Pa/m) of the end of the step: backward Euler, or BDF2 with the
-    /// velocities before the last step when `bdf2` gives the ratio of this step to it.
-    pub(super) fn solve_momentum(&mut self, dt: f64, grad: f64, bdf2: Option<f64>) -> Result<(), Breakdown> {
+    /// velocities of the last two accepted states when `bdf2` holds the weights of this
+    /// step (the state then holds their extrapolation, [`Eulerian::extrapolate`]).
+    pub(super) fn solve_momentum(&mut self, dt: f64, grad: f64, bdf2: Option<Bdf2>) -> Result<(), Breakdown> {
         let n = self.len();
         let c = self.c;
         let inv_dt = 1.0 / dt;
@@ -56,13 +56,13 @@ impl Eulerian<'_> {
             let slip = s.uf[i] - s.up[i];
             let (mut mf, mut mp) = (eps * c.rho_f * dz * inv_dt, phim * c.rho_p * dz * inv_dt);
             let (mut old_f, mut old_p) = (s.uf[i], s.up[i]);
-            if let Some(w) = bdf2 {
-                let scale = (1.0 + 2.0 * w) / (1.0 + w);
-                let (a, b) = ((1.0 + w) / scale, w * w / (1.0 + w) / scale);
-                old_f = a * s.uf[i] - b * prev.uf[i];
-                old_p = a * s.up[i] - b * prev.up[i];
-                mf *= scale;
-                mp *= scale;
+            if let Some(b) = bdf2 {
+                // the state holds the extrapolation about which the drag is linearised;
+                // the old values are the two last accepted states
+                old_f = b.old(self.saved.uf()[i], prev.uf[i]);
+                old_p = b.old(self.saved.up()[i], prev.up[i]);
+                mf *= b.scale();
+                mp *= b.scale();
             }
             bl.diag[i] = [[mf + tangent * bf, -tangent * bf], [-tangent * bp, mp + tangent * bp]];
             bl.lower[i] = [0.0; 2];

@@ -7,10 +7,10 @@ use saltus_core::scene::Scene;
 use saltus_core::Error;
 use saltus_core::{DragLaw, DriftForm, EffectiveViscosity, Fluctuation, Turbulence};
 
-use super::coefficients::{Coefficients, Scratch};
 use super::config::{Config, Top};
 use super::rheology::{Elastic, Rheology};
 use super::state::{Saved, State};
+use super::workspace::{Coefficients, Scratch};
 use crate::column::turbulence::{friction_velocity, EddyViscosity, KOmegaPhysics, KOmegaRun};
 use crate::column::{ColumnOperator, Grid};
 use crate::inputs::DragKernel;
@@ -53,16 +53,24 @@ pub(super) struct Stepping {
     pub dt: f64,
     /// consecutive steps under the steady tolerance
     pub calm: usize,
-    /// time-accurate stepping: the velocities before the last accepted step and its
+    /// time-accurate stepping: the fields before the last accepted step and its
     /// length (s), 0 before the first (that step is then backward Euler)
     pub previous: Previous,
 }
 
-/// The velocities of both phases one accepted step back, for BDF2.
+/// The transported fields one accepted step back, for BDF2.
 #[derive(Default)]
 pub(super) struct Previous {
     pub uf: Vec<f64>,
     pub up: Vec<f64>,
+    pub phi: Vec<f64>,
+    pub temp: Vec<f64>,
+    /// k and omega, empty without a two-equation closure
+    pub k: Vec<f64>,
+    pub omega: Vec<f64>,
+    /// the particle flux and its drift part at the faces
+    pub flux: Vec<f64>,
+    pub drift_flux: Vec<f64>,
     /// length of the step that followed them (s); 0: none yet
     pub dt: f64,
 }

@@ -58,6 +58,22 @@ impl Saved {
     pub fn up(&self) -> &[f64] {
         &self.up
     }
+    /// The volume fraction saved.
+    pub fn phi(&self) -> &[f64] {
+        &self.phi
+    }
+    /// The granular temperature saved (m^2/s^2).
+    pub fn temp(&self) -> &[f64] {
+        &self.temp
+    }
+    /// The particle flux saved (m/s).
+    pub fn flux(&self) -> &[f64] {
+        &self.flux
+    }
+    /// The drift part of the particle flux saved (m/s).
+    pub fn drift_flux(&self) -> &[f64] {
+        &self.drift_flux
+    }
 }
 
 impl State {
@@ -107,9 +123,18 @@ impl State {
     /// phi u_p and phi T relative to their maxima), so that the velocity and temperature of
     /// the vanishing particles of the clear-fluid region, which carry nothing, do not hold
     /// the run away from steady state. The growth aims at phi changes of half
-    /// `max_phi_change` and relative changes of 0.2 per step; with `phi_only` (time-accurate
-    /// stepping, whose time error is set by the largest step) at the phi changes alone.
-    pub fn rates(&self, saved: &Saved, dt: f64, kinetic: bool, max_phi_change: f64, phi_only: bool) -> (f64, f64) {
+    /// `max_phi_change` and relative changes of `field_change` per step; with `phi_only`
+    /// (time-accurate stepping, whose time error is set by the largest step) at the phi
+    /// changes alone.
+    pub fn rates(
+        &self,
+        saved: &Saved,
+        dt: f64,
+        kinetic: bool,
+        max_phi_change: f64,
+        field_change: f64,
+        phi_only: bool,
+    ) -> (f64, f64) {
         let mut du: f64 = 0.0;
         let mut dq: f64 = 0.0;
         let mut de: f64 = 0.0;
@@ -137,7 +162,7 @@ impl State {
             rel = rel.max(de / emax);
         }
         let by_phi = 0.5 * max_phi_change / dphi.max(1e-300);
-        let target = if phi_only { by_phi } else { by_phi.min(0.2 / rel.max(1e-300)) };
+        let target = if phi_only { by_phi } else { by_phi.min(field_change / rel.max(1e-300)) };
         (rel / dt, target.clamp(0.5, 1.3))
     }
 }

@@ -2,7 +2,7 @@
 //! adaptive time step and the rejected attempts inside it.
 //!
 //! The time step grows while phi changes by less than half of `solver.eulerian.max_phi_change`
-//! and fields by less than 20 % per step; an attempt that makes phi negative or reach the
+//! and fields by less than `solver.eulerian.target_field_change` (50 %) per step; an attempt that makes phi negative or reach the
 //! maximum packing, or produces a non-finite value, is rejected, the state restored, and
 //! retried with 0.3 dt. Below `solver.eulerian.dt_min` the run ends [`Ending::Unstable`] with the
 //! last rejection's breakdown. After every accepted step the coefficients are evaluated
@@ -14,6 +14,7 @@ use std::time::Instant;
 use saltus_core::scene::TimeStepping;
 
 use super::{stage, Eulerian};
+use crate::column::bdf2::Bdf2;
 use crate::run::{Breakdown, Clock, Ending, Limits, Phase, Progress, Sample, Stepper};
 use crate::RunReport;
 
@@ -25,20 +26,70 @@ impl Eulerian<'_> {
         let t = Instant::now();
         self.s.save(&mut self.saved);
         let grad = self.pressure_gradient(self.s.time + dt);
-        let bdf2 = self.accurate().then_some(self.stepping.previous.dt).filter(|&p| p > 0.0).map(|p| dt / p);
+        let bdf2 = self.accurate().then_some(self.stepping.previous.dt).filter(|&p| p > 0.0).map(|p| Bdf2::new(dt / p));
+        let t = match bdf2 {
+            Some(b) => {
+                self.extrapolate(b)?;
+                self.stages.lap(stage::COEFFICIENTS, t)
+            }
+            None => t,
+        };
         self.solve_momentum(dt, grad, bdf2)?;
         let t = self.stages.lap(stage::MOMENTUM, t);
         if self.kinetic {
-            self.solve_temperature(dt)?;
+            self.solve_temperature(dt, bdf2)?;
         } else {
             self.update_local_pressure();
         }
         let t = self.stages.lap(stage::GRANULAR, t);
-        self.solve_two_equation(dt)?;
+        self.solve_two_equation(dt, bdf2)?;
         let t = self.stages.lap(stage::TURBULENCE, t);
-        let r = self.solve_phi(dt);
+        let r = self.solve_phi(dt, bdf2);
         let t = self.stages.lap(stage::VOLUME_FRACTION, t);
         r.map(|()| t)
+    }
+
+    /// Put the linear extrapolation of the last two accepted states to the end of a BDF2
+    /// step into the state and evaluate the coefficients there, then give k and omega back
+    /// their start values (their step extrapolates its own terms): the solves linearise
+    /// about this state and take their old values from the saved start and the state
+    /// before it, so that no coefficient lags by a step (the semi-implicit BDF2 of
+    /// [`crate::column::bdf2`]). phi is kept in [0, the maximum packing) and T >= 0, k >= 0,
+    /// omega > 0: a cell whose extrapolation leaves them keeps its start value.
+    fn extrapolate(&mut self, b: Bdf2) -> Result<(), Breakdown> {
+        let phi_max = self.m.rheology.phi_max();
+        let p = &self.stepping.previous;
+        let s = &mut self.s;
+        let keep = |now: &mut f64, v: f64, ok: bool| {
+            if ok {
+                *now = v;
+            }
+        };
+        for i in 0..s.phi.len() {
+            let v = b.extrapolate(s.phi[i], p.phi[i]);
+            keep(&mut s.phi[i], v, (0.0..phi_max).contains(&v));
+            let v = b.extrapolate(s.temp[i], p.temp[i]);
+            keep(&mut s.temp[i], v, v >= 0.0);
+            s.uf[i] = b.extrapolate(s.uf[i], p.uf[i]);
+            s.up[i] = b.extrapolate(s.up[i], p.up[i]);
+        }
+        for j in 0..s.flux.len() {
+            s.flux[j] = b.extrapolate(s.flux[j], p.flux[j]);
+            s.drift_flux[j] = b.extrapolate(s.drift_flux[j], p.drift_flux[j]);
+        }
+        if let Some(kw) = s.kw.as_mut().filter(|kw| kw.col.len() == p.k.len()) {
+            for i in 0..p.k.len() {
+                let v = b.extrapolate(kw.col.k[i], p.k[i]);
+                keep(&mut kw.col.k[i], v, v >= 0.0);
+                let v = b.extrapolate(kw.col.omega[i], p.omega[i]);
+                keep(&mut kw.col.omega[i], v, v > 0.0);
+            }
+        }
+        let r = self.evaluate_with(false);
+        if let Some(kw) = &mut self.s.kw {
+            kw.col.restore();
+        }
+        r
     }
 
     /// The coefficients of the current state, timed from `since` (the end of the stage
@@ -68,16 +119,27 @@ impl Eulerian<'_> {
         }
     }
 
-    /// Keep the velocities before an accepted step of length `dt` for the next BDF2 step.
+    /// Keep the fields before an accepted step of length `dt` for the next BDF2 step.
     fn remember(&mut self, dt: f64) {
         if !self.accurate() {
             return;
         }
         let p = &mut self.stepping.previous;
-        p.uf.clear();
-        p.uf.extend_from_slice(self.saved.uf());
-        p.up.clear();
-        p.up.extend_from_slice(self.saved.up());
+        let empty: [&[f64]; 2] = [&[], &[]];
+        let [k, omega] = self.s.kw.as_ref().map_or(empty, |kw| [kw.col.saved_k(), kw.col.saved_omega()]);
+        for (dst, src) in [
+            (&mut p.uf, self.saved.uf()),
+            (&mut p.up, self.saved.up()),
+            (&mut p.phi, self.saved.phi()),
+            (&mut p.temp, self.saved.temp()),
+            (&mut p.k, k),
+            (&mut p.omega, omega),
+            (&mut p.flux, self.saved.flux()),
+            (&mut p.drift_flux, self.saved.drift_flux()),
+        ] {
+            dst.clear();
+            dst.extend_from_slice(src);
+        }
         p.dt = dt;
     }
 }
@@ -107,8 +169,8 @@ impl Stepper for Eulerian<'_> {
             return Some(e);
         }
         let s = &self.cfg.settings;
-        let (dt_max, dt_min, end_time, tol, max_change) =
-            (s.dt_max, s.dt_min, limits.end_time, s.steady_tolerance, s.max_phi_change);
+        let (dt_max, dt_min, end_time, tol, max_change, field_change) =
+            (s.dt_max, s.dt_min, limits.end_time, s.steady_tolerance, s.max_phi_change, s.target_field_change);
         loop {
             let dt = self.stepping.dt;
             let step = dt.min(end_time - self.s.time);
@@ -117,7 +179,8 @@ impl Stepper for Eulerian<'_> {
                     self.remember(step);
                     self.s.time += step;
                     self.s.steps += 1;
-                    let (rate, grow) = self.s.rates(&self.saved, step, self.kinetic, max_change, self.accurate());
+                    let (rate, grow) =
+                        self.s.rates(&self.saved, step, self.kinetic, max_change, field_change, self.accurate());
                     self.s.residual = rate;
                     self.stepping.calm = if rate < tol { self.stepping.calm + 1 } else { 0 };
                     self.stepping.dt = (dt * grow).min(dt_max);

@@ -3,13 +3,17 @@
 
 use super::rheology::Rheology;
 use super::{Eulerian, PHI_FLOOR};
+use crate::column::bdf2::Bdf2;
 use crate::run::Breakdown;
 
 impl Eulerian<'_> {
     /// Backward-Euler step of the granular temperature: production from the shear rate of
     /// the new u_p (the column operator's, exact on stretched grids), conduction,
-    /// collisional and drag dissipation implicit, so T stays >= 0.
-    pub(super) fn solve_temperature(&mut self, dt: f64) -> Result<(), Breakdown> {
+    /// collisional and drag dissipation implicit, so T stays >= 0. With `bdf2`, a BDF2 step
+    /// ([`Bdf2::positive_row`]) from the last two accepted states, with the coefficients
+    /// and the dissipation rate per unit T of the state, which then holds their
+    /// extrapolation to the end of the step ([`Eulerian::extrapolate`]).
+    pub(super) fn solve_temperature(&mut self, dt: f64, bdf2: Option<Bdf2>) -> Result<(), Breakdown> {
         let Rheology::Kinetic { model: kt, .. } = self.m.rheology else { return Ok(()) };
         let n = self.len();
         let c = self.c;
@@ -19,6 +23,8 @@ impl Eulerian<'_> {
         let h = self.op.spacing();
         let cd_inf = self.m.drag.cd_inf();
         let (s, co) = (&self.s, &self.co);
+        let before = bdf2.filter(|_| self.stepping.previous.temp.len() == n);
+        let (t_now, t_before) = (self.saved.temp(), &self.stepping.previous.temp);
         for (cd, &r) in self.sc.cd.iter_mut().zip(&co.cd_ratio) {
             *cd = cd_inf / r.max(1e-300);
         }
@@ -26,14 +32,19 @@ impl Eulerian<'_> {
         let t = &mut self.sc.tri;
         for (i, &dzi) in dz.iter().enumerate() {
             let phi = s.phi[i].max(0.0);
-            let m = 1.5 * c.rho_p * phi.max(PHI_FLOOR) * dzi / dt;
-            let st = s.temp[i].max(0.0).sqrt();
-            let sink = kt.dissipation_per_temperature(&co.coef[i], c.rho_p, c.d, st) + self.sc.c_j[i] * co.beta[i];
+            let now = s.temp[i].max(0.0);
+            let (scale, old) = match before {
+                Some(b) => b.positive_row(t_now[i].max(0.0), t_before[i]),
+                None => (1.0, now),
+            };
+            let m = scale * 1.5 * c.rho_p * phi.max(PHI_FLOOR) * dzi / dt;
+            let sink =
+                kt.dissipation_per_temperature(&co.coef[i], c.rho_p, c.d, now.sqrt()) + self.sc.c_j[i] * co.beta[i];
             let prod = co.eta_kin[i] * co.gamma_p[i] * co.gamma_p[i];
             t.lower[i] = 0.0;
             t.upper[i] = 0.0;
             t.diag[i] = m + sink * dzi;
-            t.rhs[i] = m * s.temp[i].max(0.0) + prod * dzi;
+            t.rhs[i] = m * old + prod * dzi;
         }
         for (j, &hj) in h.iter().enumerate().take(n).skip(1) {
             let k = 0.5 * (co.kappa[j - 1] + co.kappa[j]) / hj;

@@ -6,6 +6,7 @@ use saltus_core::DriftForm;
 
 use super::rheology::Rheology;
 use super::Eulerian;
+use crate::column::bdf2::Bdf2;
 use crate::run::Breakdown;
 
 /// minmod limiter: the smaller slope when both have the same sign, else 0.
@@ -38,8 +39,16 @@ impl Eulerian<'_> {
     /// grows with phi_up whatever the sign of f', so the scheme is monotone on both
     /// branches. At steady state the bracket of the wall-normal balance vanishes and the
     /// mobility cancels: steady states do not depend on which cell lends it.
-    pub(super) fn solve_phi(&mut self, dt: f64) -> Result<(), Breakdown> {
+    ///
+    /// With `bdf2`, a BDF2 step ([`crate::column::bdf2`]) from the state extrapolated to the
+    /// end of the step, about which the fluxes are linearised (the stepper puts it in the
+    /// state, [`Eulerian::extrapolate`]): the mass term scaled by s, the old phi the
+    /// combination a phi^n - b phi^{n-1} of the two last accepted states, and in the delta
+    /// form about the extrapolated phi* the right side gains -m s (phi* - old). The weights
+    /// sum to one, so the sediment mass is kept to round-off as in backward Euler.
+    pub(super) fn solve_phi(&mut self, dt: f64, bdf2: Option<Bdf2>) -> Result<(), Breakdown> {
         let n = self.len();
+        let bdf2 = bdf2.filter(|_| self.stepping.previous.phi.len() == n);
         let gw = self.c.buoyant_weight;
         let (hs, dz) = (self.op.spacing(), self.op.grid().dz());
         // local rheologies: the well-balanced deferred correction (see
@@ -111,8 +120,16 @@ impl Eulerian<'_> {
             coeffs[3 * j + 2] = -mp * (pr.b - pl.b) / h + deferred;
         }
         let t = &mut self.sc.tri;
+        // the BDF2 row's mass factor and old phi (backward Euler: 1 and the state's phi)
+        let scale = bdf2.map_or(1.0, |b| b.scale());
+        let mut old = std::mem::take(&mut self.sc.old_phi);
+        old.clear();
+        match bdf2 {
+            Some(b) => old.extend(self.saved.phi().iter().zip(&self.stepping.previous.phi).map(|(&a, &p)| b.old(a, p))),
+            None => old.extend_from_slice(&self.s.phi),
+        }
         for i in 0..n {
-            let m = dz[i] / dt;
+            let m = scale * dz[i] / dt;
             let (cl_up, cr_up, s_up) = (coeffs[3 * (i + 1)], coeffs[3 * (i + 1) + 1], coeffs[3 * (i + 1) + 2]);
             let (cl_dn, cr_dn, s_dn) = (coeffs[3 * i], coeffs[3 * i + 1], coeffs[3 * i + 2]);
             t.diag[i] = m + cl_up - cr_dn;
@@ -123,9 +140,13 @@ impl Eulerian<'_> {
             let f_up = cl_up * self.s.phi[i] + if i + 1 < n { cr_up * self.s.phi[i + 1] } else { 0.0 } + s_up;
             let f_dn = if i > 0 { cl_dn * self.s.phi[i - 1] } else { 0.0 } + cr_dn * self.s.phi[i] + s_dn;
             t.rhs[i] = f_dn - f_up;
+            if bdf2.is_some() {
+                t.rhs[i] -= m * (self.s.phi[i] - old[i]);
+            }
         }
         if let Err(row) = t.solve(&mut self.sc.work) {
             self.sc.face_coeffs = coeffs;
+            self.sc.old_phi = old;
             return Err(self.breakdown(row, "phi", f64::NAN, "singular volume-fraction system".into()));
         }
         // fluxes of the implicit solution, then phi rebuilt from them in flux form: the
@@ -141,7 +162,7 @@ impl Eulerian<'_> {
                 coeffs[3 * j] * self.sc.work[j - 1] + coeffs[3 * j + 1] * self.sc.work[j] + coeffs[3 * j + 2];
         }
         for (i, &dzi) in dz.iter().enumerate() {
-            self.sc.work[i] = self.s.phi[i] - dt / dzi * (self.s.flux[i + 1] - self.s.flux[i]);
+            self.sc.work[i] = old[i] - dt / (scale * dzi) * (self.s.flux[i + 1] - self.s.flux[i]);
         }
         if self.m.fluctuation.is_some() {
             // the drift part of the flux of the new phi, as the flux itself
@@ -159,18 +180,22 @@ impl Eulerian<'_> {
                 Some("negative")
             } else if v >= phi_max {
                 Some("at or above the maximum packing of the granular closure")
-            } else if (v - self.s.phi[i]).abs() > self.cfg.settings.max_phi_change {
+            } else if (v - if bdf2.is_some() { self.saved.phi()[i] } else { self.s.phi[i] }).abs()
+                > self.cfg.settings.max_phi_change
+            {
                 Some("changed more than solver.eulerian.max_phi_change in one step")
             } else {
                 None
             };
             if let Some(reason) = bad {
                 self.sc.face_coeffs = coeffs;
+                self.sc.old_phi = old;
                 return Err(self.breakdown(i, "phi", v, reason.into()));
             }
         }
         self.s.phi.copy_from_slice(&self.sc.work);
         self.sc.face_coeffs = coeffs;
+        self.sc.old_phi = old;
         Ok(())
     }
 

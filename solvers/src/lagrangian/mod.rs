@@ -10,10 +10,9 @@
 //!   the momentum exchange with the column;
 //! - [`stats`]: time averages, block errors, the steady-state test, Haff's cooling, the
 //!   granular fields;
-//! - [`run`]: the solver (parameters, state, workspace), its stepping, the deposition, the
-//!   set-up and the configuration;
-//! - [`output`]: the report, the checkpoint (the state's own serialisation) and the
-//!   ParaView documents.
+//! - [`run`]: the solver (parameters, state with its checkpoint serialisation, workspace),
+//!   its stepping, the deposition, the set-up and the configuration;
+//! - [`output`]: the report and the ParaView documents.
 
 pub mod coupling;
 pub mod engine;

@@ -3,10 +3,10 @@
 //! ([`Phase::Flow`]), each in the pool of `solver.lagrangian.threads`. It joins the run
 //! ([`super::run`]) and its outputs ([`super::output`]).
 
-use super::output::{checkpoint, report, vtk};
+use super::output::{report, vtk};
 use super::run::config::FluidMode;
 use super::run::solver::Lagrangian;
-use super::run::state::Stage;
+use super::run::state::{self, Stage};
 use super::run::workspace::within;
 use crate::output::{self, finite};
 use crate::run::{Clock, Ending, Limits, Phase, Progress, Sample, Stepper};
@@ -145,11 +145,11 @@ impl Stepper for Lagrangian<'_> {
     }
 
     fn save(&self, out: &mut Vec<u8>) -> Result<(), String> {
-        checkpoint::save(&self.state, out)
+        state::save(&self.state, out)
     }
 
     fn restore(&mut self, bytes: &[u8]) -> Result<(), String> {
-        let s = checkpoint::load(bytes, self.dt(), self.state.column.is_some(), self.state.granular.is_some())?;
+        let s = state::load(bytes, self.dt(), self.state.column.is_some(), self.state.granular.is_some())?;
         self.adopt(s);
         Ok(())
     }
@@ -161,7 +161,7 @@ impl Stepper for Lagrangian<'_> {
     fn warm_start(&mut self, from: &crate::run::WarmStart) -> Result<(), String> {
         match from {
             crate::run::WarmStart::State(r) => {
-                let parent = checkpoint::decode(&r.state).map_err(|e| format!("{}: {e}", r.file.display()))?;
+                let parent = state::decode(&r.state).map_err(|e| format!("{}: {e}", r.file.display()))?;
                 self.warm_start_from(parent).map_err(|e| format!("{}: {e}", r.file.display()))
             }
             crate::run::WarmStart::Profiles(_) => {

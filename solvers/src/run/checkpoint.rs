@@ -27,10 +27,11 @@ use bincode::Options as _;
 use saltus_core::Error;
 use serde::{Deserialize, Serialize};
 
-use super::history::Cadence;
+use super::paraview::Series;
+use super::{Clock, Phase};
 
 /// File name of the checkpoint in its folder.
-pub const FILE: &str = "checkpoint.bin";
+pub use crate::output::CHECKPOINT_FILE as FILE;
 /// First bytes of a checkpoint.
 const MAGIC: &[u8; 8] = b"SALTUSCP";
 /// Layout version of the file and of every saved state (2: the DEM's statistics carry
@@ -40,6 +41,31 @@ const MAGIC: &[u8; 8] = b"SALTUSCP";
 /// driver's clock travel with the cadences; 5: the DEM carries the time average of the
 /// phases' relative velocity of Cheng's eq 24).
 pub const VERSION: u32 = 5;
+
+/// Where the cadences are: part of a checkpoint, so that a restarted run writes the rows
+/// and snapshots the uninterrupted run would have.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Cadence {
+    /// phase of the last unit of work seen, `None` before the first
+    pub phase: Option<Phase>,
+    /// flow time of the next row (s)
+    pub next_sample: f64,
+    /// rows written on the cadence (the row of an ending is not counted: a restart
+    /// drops it)
+    pub rows: u64,
+    /// steps of the last row written, so that the ending does not repeat it
+    pub last_steps: Option<u64>,
+    /// snapshots written
+    pub snapshots: u64,
+    /// flow time of the next snapshot (s)
+    pub next_snapshot: f64,
+    /// time of the current phase at which the next checkpoint is due (s)
+    pub next_checkpoint: f64,
+    /// the ParaView snapshots written and the time of the next
+    pub paraview: Series,
+    /// the driver's clock at the checkpoint (its flow time carries over a restart)
+    pub clock: Clock,
+}
 
 /// What a checkpoint holds besides its framing.
 #[derive(Serialize, Deserialize)]

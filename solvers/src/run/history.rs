@@ -21,10 +21,9 @@ use std::path::{Path, PathBuf};
 
 use saltus_core::scene::Scene;
 use saltus_core::Error;
-use serde::{Deserialize, Serialize};
 
-use super::checkpoint::{self, Restart};
-use super::paraview::{self, Series};
+use super::checkpoint::{self, Cadence, Restart};
+use super::paraview;
 use super::{Clock, Control, Ending, Observer, Phase, Progress, Sample, Stepper};
 
 /// File name of the time series.
@@ -37,31 +36,6 @@ pub const SNAPSHOTS: &str = "snapshots";
 pub const SNAPSHOT_INDEX: &str = "index.csv";
 /// Header of [`SNAPSHOT_INDEX`].
 pub const SNAPSHOT_HEADER: &str = "index,t,steps,file";
-
-/// Where the cadences are: part of a checkpoint, so that a restarted run writes the rows
-/// and snapshots the uninterrupted run would have.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Cadence {
-    /// phase of the last unit of work seen, `None` before the first
-    pub phase: Option<Phase>,
-    /// flow time of the next row (s)
-    pub next_sample: f64,
-    /// rows written on the cadence (the row of an ending is not counted: a restart
-    /// drops it)
-    pub rows: u64,
-    /// steps of the last row written, so that the ending does not repeat it
-    pub last_steps: Option<u64>,
-    /// snapshots written
-    pub snapshots: u64,
-    /// flow time of the next snapshot (s)
-    pub next_snapshot: f64,
-    /// time of the current phase at which the next checkpoint is due (s)
-    pub next_checkpoint: f64,
-    /// the ParaView snapshots written and the time of the next
-    pub paraview: Series,
-    /// the driver's clock at the checkpoint (its flow time carries over a restart)
-    pub clock: Clock,
-}
 
 /// The next multiple of `interval` strictly above `t` (a row is due there).
 fn next_multiple(t: f64, interval: f64) -> f64 {

@@ -6,10 +6,9 @@
 //! a few times per attempt, so the counting costs well under 1 % of a step. The times
 //! are those of this process: a restarted run counts from its restart.
 
-use std::collections::BTreeMap;
 use std::time::Instant;
 
-use serde::{Deserialize, Serialize};
+pub use crate::output::Timing;
 
 /// Running wall times of a fixed list of stages.
 #[derive(Clone, Debug)]
@@ -51,40 +50,6 @@ impl Stages {
     /// (name, seconds) of every stage, in order.
     pub fn iter(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
         self.names.iter().copied().zip(self.secs.iter().copied())
-    }
-}
-
-/// The wall time of a run by stage, as written in `summary.json`: the solver's stages,
-/// the driver's `output` (the observers: time series, snapshots, checkpoints, ParaView)
-/// and `other` (the rest of the run's wall time: set-up, the progress display, the loop),
-/// which add up to `wall`.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Timing {
-    /// wall time of the run in this process (s)
-    pub wall: f64,
-    /// seconds per stage
-    pub stages: BTreeMap<String, f64>,
-}
-
-impl Timing {
-    /// The timing of a run of `wall` seconds whose solver counted `solver` and whose
-    /// observers took `output` seconds; `other` is what remains.
-    pub fn new(wall: f64, solver: impl Iterator<Item = (&'static str, f64)>, output: f64) -> Self {
-        let mut stages: BTreeMap<String, f64> = solver.map(|(k, v)| (k.to_string(), v)).collect();
-        stages.insert("output".into(), output);
-        let counted: f64 = stages.values().sum();
-        stages.insert("other".into(), (wall - counted).max(0.0));
-        Self { wall, stages }
-    }
-
-    /// One line: the stages by decreasing time with their share of the wall time.
-    pub fn line(&self) -> String {
-        let mut v: Vec<(&String, &f64)> = self.stages.iter().filter(|(_, s)| **s > 0.0).collect();
-        v.sort_by(|a, b| b.1.total_cmp(a.1));
-        let total = self.wall.max(f64::MIN_POSITIVE);
-        let parts: Vec<String> =
-            v.iter().map(|(k, s)| format!("{k} {:.3} s ({:.1} %)", s, 100.0 * **s / total)).collect();
-        format!("wall time {:.3} s: {}", self.wall, parts.join(", "))
     }
 }
 

@@ -361,7 +361,7 @@ impl GranularStress for FrictionalCollisional {
 
     // the grains' restitution and friction are stated once, in [particles]; this model's
     // own keys override them for the continuum description only
-    fn inherit(&mut self, given: &toml::Table, particles: &saltus_core::scene::Particles) {
+    fn inherit(&mut self, given: &toml::Table, particles: &saltus_core::Grains) {
         if !given.contains_key("restitution") {
             self.restitution = particles.restitution;
         }

@@ -32,6 +32,7 @@ use super::neighbours::NeighbourList;
 use super::pairs::{Contact, PairOut, PairView};
 use super::particles::{Box3, Particles};
 use super::scratch::Scratch;
+pub use super::scratch::STAGES;
 use super::walls::{Wall, MAX_WALLS};
 
 /// The DEM engine: its parameters (box, contact law, walls, bottom, time step: set once
@@ -78,9 +79,6 @@ pub struct Dem {
     #[serde(skip)]
     work: Scratch,
 }
-
-/// The stages of a DEM step whose wall time the engine counts.
-pub const STAGES: [&str; 3] = ["neighbours", "pair_forces", "integration"];
 
 impl Dem {
     /// A DEM engine; `skin` is the surface distance of the Verlet list (m).

@@ -3,9 +3,11 @@
 //! first step).
 
 use super::contact_sums::ContactSums;
-use super::dem::STAGES;
 use super::pairs::Touching;
 use crate::run::timing::Stages;
+
+/// The stages of a DEM step whose wall time the engine counts.
+pub const STAGES: [&str; 3] = ["neighbours", "pair_forces", "integration"];
 
 /// What a DEM step refills: the external force and torque the caller sets before it, the
 /// pair forces, the contact flags, the contact sums of a sampled step, and the wall time

@@ -23,8 +23,7 @@ use saltus_core::scene::Scene;
 
 use super::config::FluidMode;
 use super::solver::Lagrangian;
-use super::state::{Stage, State};
-use crate::lagrangian::output::checkpoint;
+use super::state::{self, Stage, State};
 use crate::run::checkpoint::{scene_differences_in, Restart};
 
 /// Keys of a resolved scene (with the keys under them) that must be the checkpoint's for
@@ -74,7 +73,7 @@ pub fn refusal(scene: &Scene, r: &Restart) -> Option<String> {
         }
         Ok(_) => {}
     }
-    match checkpoint::decode(&r.state) {
+    match state::decode(&r.state) {
         Err(e) => Some(format!("{file}: {e}")),
         Ok(s) => flow_state(&s).err().map(|e| format!("{file}: {e}")),
     }
