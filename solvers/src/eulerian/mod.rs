@@ -82,12 +82,14 @@
 //!
 //! The solver is split along its equations: `solver` (construction, getters), `state`
 //! (the solution and the copy a rejection restores), `coefficients` (everything recomputed
-//! from the state, with the scratch space; one batch call per closure family per
-//! evaluation), `stress` (particle pressure and shear stress), `momentum`, `temperature`,
+//! from the state; one batch call per closure family per evaluation), `workspace` (the
+//! storage of the coefficients and the scratch space of the solves), `stress` (particle pressure and shear stress), `momentum`, `temperature`,
 //! `volume_fraction`, `k_omega` (one implicit step of each equation), `stepper` (the
 //! [`crate::run::Stepper`]: one accepted step per call) and `report` (profiles and
 //! summary, read without advancing anything). The coefficients always belong to the
-//! current state: the stepper evaluates them after every accepted step.
+//! current state: the stepper evaluates them after every accepted step (and a BDF2 step
+//! of the time-accurate stepping once more at the extrapolation of the last two states,
+//! about which it linearises).
 
 mod block;
 mod coefficients;
