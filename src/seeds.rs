@@ -210,6 +210,15 @@ impl Observer for Member<'_> {
     }
 }
 
+/// A seed leaves the pool when its member goes, however its run ended: at its ending
+/// (`finish`), after a failure before its first unit of work, or while a panic unwinds its
+/// thread, so that the other seeds never wait for a round it cannot post.
+impl Drop for Member<'_> {
+    fn drop(&mut self) {
+        self.pool.leave(self.index, self.round, self.time);
+    }
+}
+
 /// One seed of a `--seeds` run.
 #[derive(Debug)]
 pub struct SeedRun {
@@ -363,10 +372,7 @@ pub fn run_seeds(
                         extra,
                     )
                     .unwrap_or_else(|e| RunOutcome::failed(e.to_string()));
-                    if let Some(m) = &member {
-                        // a run that failed before its first unit of work leaves the pool too
-                        m.pool.leave(i, m.round, m.time);
-                    }
+                    drop(member);
                     SeedRun { seed: *seed, out: dir, outcome }
                 })
             })
@@ -475,5 +481,26 @@ mod tests {
         let drift = pool_answers(&[answer(1.0, Some(0.01), 2.5), answer(1.0, Some(0.01), 0.0)]).expect("pooled");
         assert!(!drift.level);
         assert!(pool_answers(&[]).is_none());
+    }
+
+    /// A seed whose thread panics leaves the pool as it unwinds: the seed waiting for the
+    /// round is released (within 10 s; without the release the test fails, leaving the
+    /// waiting thread behind) and decides it alone.
+    #[test]
+    fn a_seed_that_panics_does_not_hold_the_others() {
+        let pool = std::sync::Arc::new(Pool::new(2, 0.05));
+        let (tx, rx) = std::sync::mpsc::channel();
+        let waiting = pool.clone();
+        std::thread::spawn(move || {
+            let _ = tx.send(waiting.post(0, 1, 1.0, Some(answer(1.0, Some(0.5), 0.0))));
+        });
+        let crashing = pool.clone();
+        let crashed = std::thread::spawn(move || {
+            let _member = Member { pool: &crashing, index: 1, next: POOL_INTERVAL, round: 0, time: 0.0 };
+            panic!("a seed's run panics");
+        });
+        assert!(crashed.join().is_err());
+        let stop = rx.recv_timeout(std::time::Duration::from_secs(10)).expect("the waiting seed was released");
+        assert!(!stop, "an error of 0.5 does not meet the target 0.05");
     }
 }

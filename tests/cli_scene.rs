@@ -70,6 +70,9 @@ fn check_refuses_exactly_what_run_refuses() {
     for (set, key) in [
         ("solver.lagrangian.dt_safety=0.9", "solver.lagrangian.dt_safety"),
         ("solver.eulerian.eddy_relaxation=0", "solver.eulerian.eddy_relaxation"),
+        ("solver.eulerian.target_field_change=0", "solver.eulerian.target_field_change"),
+        ("solver.eulerian.target_field_change=nan", "solver.eulerian.target_field_change"),
+        ("solver.eulerian.target_field_change=1e308", "solver.eulerian.target_field_change"),
     ] {
         for kind in ["eulerian", "lagrangian"] {
             let t = format!("solver.type={kind}");

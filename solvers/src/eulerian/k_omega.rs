@@ -20,8 +20,7 @@ impl Eulerian<'_> {
         }
         let (phi, uf, shear) = (&self.s.phi, &self.s.uf, &self.sc.shear);
         let p = &self.stepping.previous;
-        let before =
-            bdf2.filter(|_| p.k.len() == phi.len()).map(|weights| Before { weights, k: &p.k, omega: &p.omega });
+        let before = bdf2.map(|weights| Before { weights, k: &p.k, omega: &p.omega });
         let result =
             kw.advance(model, &self.op, &self.k_omega_physics, phi, uf, shear, self.co.visc_ratio[0], dt, before);
         result.map_err(|f| self.breakdown(f.cell, f.field, f.value, f.reason.into()))

@@ -2,9 +2,9 @@
 //! adaptive time step and the rejected attempts inside it.
 //!
 //! The time step grows while phi changes by less than half of `solver.eulerian.max_phi_change`
-//! and fields by less than `solver.eulerian.target_field_change` (50 %) per step; an attempt that makes phi negative or reach the
-//! maximum packing, or produces a non-finite value, is rejected, the state restored, and
-//! retried with 0.3 dt. Below `solver.eulerian.dt_min` the run ends [`Ending::Unstable`] with the
+//! and fields by less than `solver.eulerian.target_field_change` (50 %) per step; an attempt
+//! that makes phi negative or reach the maximum packing, or produces a non-finite value, is
+//! rejected, the state restored, and retried with 0.3 dt. Below `solver.eulerian.dt_min` the run ends [`Ending::Unstable`] with the
 //! last rejection's breakdown. After every accepted step the coefficients are evaluated
 //! for the new state, so that the getters and the report read them without advancing
 //! anything, and the next step starts from them.
@@ -60,16 +60,15 @@ impl Eulerian<'_> {
         let phi_max = self.m.rheology.phi_max();
         let p = &self.stepping.previous;
         let s = &mut self.s;
-        let keep = |now: &mut f64, v: f64, ok: bool| {
-            if ok {
-                *now = v;
-            }
-        };
         for i in 0..s.phi.len() {
             let v = b.extrapolate(s.phi[i], p.phi[i]);
-            keep(&mut s.phi[i], v, (0.0..phi_max).contains(&v));
+            if (0.0..phi_max).contains(&v) {
+                s.phi[i] = v;
+            }
             let v = b.extrapolate(s.temp[i], p.temp[i]);
-            keep(&mut s.temp[i], v, v >= 0.0);
+            if v >= 0.0 {
+                s.temp[i] = v;
+            }
             s.uf[i] = b.extrapolate(s.uf[i], p.uf[i]);
             s.up[i] = b.extrapolate(s.up[i], p.up[i]);
         }
@@ -77,12 +76,17 @@ impl Eulerian<'_> {
             s.flux[j] = b.extrapolate(s.flux[j], p.flux[j]);
             s.drift_flux[j] = b.extrapolate(s.drift_flux[j], p.drift_flux[j]);
         }
-        if let Some(kw) = s.kw.as_mut().filter(|kw| kw.col.len() == p.k.len()) {
+        if let Some(kw) = &mut s.kw {
+            let col = &mut kw.col;
             for i in 0..p.k.len() {
-                let v = b.extrapolate(kw.col.k[i], p.k[i]);
-                keep(&mut kw.col.k[i], v, v >= 0.0);
-                let v = b.extrapolate(kw.col.omega[i], p.omega[i]);
-                keep(&mut kw.col.omega[i], v, v > 0.0);
+                let v = b.extrapolate(col.k[i], p.k[i]);
+                if v >= 0.0 {
+                    col.k[i] = v;
+                }
+                let v = b.extrapolate(col.omega[i], p.omega[i]);
+                if v > 0.0 {
+                    col.omega[i] = v;
+                }
             }
         }
         let r = self.evaluate_with(false);

@@ -23,7 +23,6 @@ impl Eulerian<'_> {
         let h = self.op.spacing();
         let cd_inf = self.m.drag.cd_inf();
         let (s, co) = (&self.s, &self.co);
-        let before = bdf2.filter(|_| self.stepping.previous.temp.len() == n);
         let (t_now, t_before) = (self.saved.temp(), &self.stepping.previous.temp);
         for (cd, &r) in self.sc.cd.iter_mut().zip(&co.cd_ratio) {
             *cd = cd_inf / r.max(1e-300);
@@ -33,7 +32,7 @@ impl Eulerian<'_> {
         for (i, &dzi) in dz.iter().enumerate() {
             let phi = s.phi[i].max(0.0);
             let now = s.temp[i].max(0.0);
-            let (scale, old) = match before {
+            let (scale, old) = match bdf2 {
                 Some(b) => b.positive_row(t_now[i].max(0.0), t_before[i]),
                 None => (1.0, now),
             };

@@ -48,7 +48,6 @@ impl Eulerian<'_> {
     /// sum to one, so the sediment mass is kept to round-off as in backward Euler.
     pub(super) fn solve_phi(&mut self, dt: f64, bdf2: Option<Bdf2>) -> Result<(), Breakdown> {
         let n = self.len();
-        let bdf2 = bdf2.filter(|_| self.stepping.previous.phi.len() == n);
         let gw = self.c.buoyant_weight;
         let (hs, dz) = (self.op.spacing(), self.op.grid().dz());
         // local rheologies: the well-balanced deferred correction (see
