@@ -66,6 +66,13 @@ enum Command {
         /// change)
         #[arg(long, value_name = "DIR")]
         restart: Option<PathBuf>,
+        /// start from the final state of the finished run in DIR instead of from rest: an
+        /// Eulerian scene from its profiles.csv; a DEM scene from the grains of its
+        /// checkpoint.bin (a DEM run of the same grains, no deposition), or, when DIR is a
+        /// two-fluid run, its grains deposited as from rest and then given the run's u_f and
+        /// u_p (docs/lagrangian.md)
+        #[arg(long, value_name = "DIR")]
+        warm_start: Option<PathBuf>,
         /// stop the run after SECONDS of wall-clock time, writing its outputs (and a DEM
         /// checkpoint to continue from with --restart) as at its end; the summary's ending
         /// is `wall_clock`
@@ -321,19 +328,33 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             outln!("# {} resolved: every default filled in, ranges and closure needs checked", scene.display());
             out!("{}", s.to_toml()?);
         }
-        Command::Run { scene, set, closures, out, restart, max_wall, log_interval, quiet, json, seeds } => {
+        Command::Run { scene, set, closures, out, restart, warm_start, max_wall, log_interval, quiet, json, seeds } => {
             if !(log_interval.is_finite() && log_interval > 0.0 && log_interval <= 1e9) {
                 anyhow::bail!("--log-interval {log_interval}: must be a number of seconds in (0, 1e9]");
             }
             if let Some(w) = max_wall.filter(|w| !(w.is_finite() && *w >= 0.0 && *w <= 1e9)) {
                 anyhow::bail!("--max-wall {w}: must be a number of seconds in [0, 1e9]");
             }
+            if let (Some(_), Some(from)) = (&restart, &warm_start) {
+                anyhow::bail!(
+                    "--warm-start {}: a continued run (--restart) goes on from its own checkpoint",
+                    from.display()
+                );
+            }
+            let warm = |s: &Scene| -> anyhow::Result<Option<saltus_solvers::WarmStart>> {
+                let Some(from) = &warm_start else { return Ok(None) };
+                match saltus::runner::warm_state(s, from).map_err(|e| anyhow::anyhow!("--warm-start: {e:#}"))? {
+                    Ok(w) => Ok(Some(w)),
+                    Err(why) => anyhow::bail!("--warm-start {}: {why}", from.display()),
+                }
+            };
             if let Some(n) = seeds {
                 if let Err(e) = saltus::runner::catch_interrupt() {
                     saltus::errln!("warning: {e:#}; an interrupt ends the runs without writing their outputs");
                 }
-                let settings = saltus::runner::RunSettings { restart, log_every: None, max_wall, warm_start: None };
                 let base = Scene::from_file_with_closures(&scene, &set, closures.as_deref())?;
+                let settings =
+                    saltus::runner::RunSettings { restart, log_every: None, max_wall, warm_start: warm(&base)? };
                 let out = out.unwrap_or_else(|| saltus::runner::default_out(&base));
                 let report = saltus::seeds::run_seeds(&scene, &set, closures.as_deref(), n, &out, &settings)?;
                 if !quiet {
@@ -364,7 +385,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 restart,
                 log_every: (!quiet).then(|| std::time::Duration::from_secs_f64(log_interval)),
                 max_wall,
-                warm_start: None,
+                warm_start: warm(&s)?,
             };
             let outcome = saltus::runner::run_scene(&s, &out, &bar, &settings);
             if !quiet {

@@ -246,6 +246,41 @@ pub fn load_checked(scene: &Path, set: &[String], closures: Option<&Path>) -> Re
     }
 }
 
+/// The final profiles a run wrote into `dir`.
+pub fn profiles(dir: &Path) -> anyhow::Result<saltus_solvers::Profiles> {
+    let t = Table::read_profiles_file(&dir.join("profiles.csv"))
+        .with_context(|| format!("{}: no profiles to start from", dir.display()))?;
+    Ok(saltus_solvers::Profiles { columns: t.names.into_iter().zip(t.columns).collect() })
+}
+
+/// The final state of the run in `from` that `scene` starts from (a sweep's warm start,
+/// `saltus run --warm-start`): its profiles for the Eulerian column; for the DEM, the
+/// grains of its checkpoint, or the velocities of its profiles when `from` is a run of the
+/// Eulerian solver (its `summary.json` says so). `Err` when `from` holds no such state;
+/// `Ok(Err)` with the reason when the DEM scene cannot take the checkpoint's grains.
+pub fn warm_state(scene: &Scene, from: &Path) -> anyhow::Result<Result<saltus_solvers::WarmStart, String>> {
+    use saltus_core::scene::SolverKind;
+    use saltus_solvers::WarmStart;
+    if !from.is_dir() {
+        bail!("{}: not a run folder", from.display());
+    }
+    let two_fluid = || {
+        let text = std::fs::read_to_string(from.join("summary.json")).ok()?;
+        let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+        Some(v.get("solver")?.as_str()? == "eulerian")
+    };
+    match scene.solver.kind {
+        SolverKind::Eulerian => Ok(Ok(WarmStart::Profiles(profiles(from)?))),
+        SolverKind::Lagrangian if two_fluid() == Some(true) => Ok(Ok(WarmStart::Profiles(profiles(from)?))),
+        SolverKind::Lagrangian => {
+            Ok(saltus_solvers::run::checkpoint::read(from).map_err(|e| e.to_string()).and_then(|r| {
+                let w = WarmStart::State(Box::new(r));
+                saltus_solvers::warm_start_refusal(scene, &w).map_or(Ok(w), Err)
+            }))
+        }
+    }
+}
+
 /// Run `scene` into `out` as `settings` say, showing progress on `bar` (see
 /// [`progress_bar`]; a hidden bar gets a line on stderr every
 /// [`RunSettings::log_every`]), then draw `profiles.png` in `out` from the state the run

@@ -103,15 +103,13 @@ pub struct RunOptions {
 /// Why `scene` cannot start warm from `from`, if it cannot, told before anything is set
 /// up (so that a caller may start it from rest instead): a DEM scene takes the grains of a
 /// DEM checkpoint whose scene makes the same grains
-/// ([`lagrangian::run::warm::refusal`]); an Eulerian scene takes profiles, which its
-/// solver checks as it takes them.
+/// ([`lagrangian::run::warm::refusal`]) or the velocities of profiles; an Eulerian scene
+/// takes profiles. Profiles are checked by the solver as it takes them.
 pub fn warm_start_refusal(scene: &Scene, from: &WarmStart) -> Option<String> {
     match (scene.solver.kind, from) {
         (SolverKind::Lagrangian, WarmStart::State(r)) => lagrangian::run::warm::refusal(scene, r),
         (SolverKind::Eulerian, WarmStart::Profiles(_)) => None,
-        (SolverKind::Lagrangian, WarmStart::Profiles(_)) => {
-            Some("the DEM starts from another run's grains (its checkpoint), not from profiles".into())
-        }
+        (SolverKind::Lagrangian, WarmStart::Profiles(_)) => None,
         (SolverKind::Eulerian, WarmStart::State(r)) => {
             Some(format!("{}: the Eulerian column starts from profiles, not from a checkpoint", r.file.display()))
         }

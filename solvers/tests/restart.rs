@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use saltus_core::scene::Scene;
 use saltus_solvers::run::{Control, Phase, Quiet};
-use saltus_solvers::{Progress, RunOptions};
+use saltus_solvers::{Profiles, Progress, RunOptions, WarmStart};
 
 /// A bed of a few hundred grains in a box of 6 x 6 diameters: a deposition of 0.05 s,
 /// then 0.12 s of flow with the statistics from the start, a drag fluctuation closure
@@ -58,14 +58,21 @@ fn summary(dir: &Path) -> serde_json::Value {
 /// (simulated s of that phase), then restarted from the checkpoint that the stop wrote,
 /// into the same folder. Both must write the same bytes.
 fn stop_and_restart(name: &str, phase: Phase, at: f64, extra: &[&str]) {
+    stop_and_restart_from(name, phase, at, extra, None)
+}
+
+/// [`stop_and_restart`] for runs that start from `warm` (the restart takes only the
+/// checkpoint).
+fn stop_and_restart_from(name: &str, phase: Phase, at: f64, extra: &[&str], warm: Option<WarmStart>) {
     let s = scene(extra);
     let whole = tmp_out(&format!("{name}_whole"));
-    let r = saltus_solvers::run(&s, &whole, &mut Quiet).expect("runs");
+    let start = RunOptions { warm_start: warm, ..Default::default() };
+    let r = saltus_solvers::run_with(&s, &whole, &mut Quiet, &start).expect("runs");
     assert_eq!(r.ending.name(), "end_time");
 
     let parts = tmp_out(&format!("{name}_parts"));
     let mut stop = |p: &Progress| if p.phase == phase && p.time >= at { Control::Stop } else { Control::Continue };
-    let first = saltus_solvers::run(&s, &parts, &mut stop).expect("an interruption is an outcome");
+    let first = saltus_solvers::run_with(&s, &parts, &mut stop, &start).expect("an interruption is an outcome");
     assert_eq!(first.ending.name(), "interrupted");
     assert!(parts.join("checkpoint.bin").is_file());
     let opts = RunOptions { restart: Some(parts.clone()), ..Default::default() };
@@ -97,6 +104,22 @@ fn a_run_restarted_in_the_flow_ends_bit_for_bit_as_the_uninterrupted_one() {
 #[test]
 fn a_run_restarted_in_the_deposition_ends_bit_for_bit_as_the_uninterrupted_one() {
     stop_and_restart("deposition", Phase::Setup, 0.02, &[]);
+}
+
+/// A run that starts its flow from a two-fluid run's velocities keeps them across a
+/// checkpoint of its deposition: the restarted run starts its flow as the uninterrupted
+/// one does (bit for bit), not from rest.
+#[test]
+fn a_run_started_from_profiles_and_restarted_in_its_deposition_ends_bit_for_bit() {
+    let z: Vec<f64> = (0..40).map(|k| (k as f64 + 0.5) * 1e-3).collect();
+    let phi = z.iter().map(|&z| if z < 0.012 { 0.6 } else { 0.0 }).collect();
+    let u_f: Vec<f64> = z.iter().map(|&z| 20.0 * (z - 0.01).max(0.0)).collect();
+    let u_p = u_f.iter().map(|u| 0.5 * u).collect();
+    let mut p = Profiles::default();
+    for (name, v) in [("z", z), ("phi", phi), ("u_f", u_f), ("u_p", u_p)] {
+        p.push(name, v);
+    }
+    stop_and_restart_from("deposition_profiles", Phase::Setup, 0.02, &[], Some(WarmStart::Profiles(p)));
 }
 
 /// The DRW that spares the grains inside the bed reads a bed elevation the solver derives

@@ -13,13 +13,10 @@
 
 use std::path::Path;
 
-use anyhow::Context;
 use saltus_core::scene::{Scene, SolverKind};
-use saltus_solvers::WarmStart;
 
 use super::spec::Sweep;
 use crate::runner;
-use crate::table::Table;
 
 /// The parent of each point of a sweep.
 #[derive(Debug)]
@@ -51,28 +48,6 @@ impl Chains {
     }
 }
 
-/// The final profiles a run wrote into `dir`.
-pub fn profiles(dir: &Path) -> anyhow::Result<saltus_solvers::Profiles> {
-    let t = Table::read_profiles_file(&dir.join("profiles.csv"))
-        .with_context(|| format!("{}: no profiles to start from", dir.display()))?;
-    Ok(saltus_solvers::Profiles { columns: t.names.into_iter().zip(t.columns).collect() })
-}
-
-/// The final state of the run in `from` that `scene` starts from: its profiles for the
-/// Eulerian column (a run without them is an error), its checkpoint for the DEM; `Err`
-/// with the reason when the DEM scene cannot take the checkpoint's grains.
-fn state(scene: &Scene, from: &Path) -> anyhow::Result<Result<WarmStart, String>> {
-    match scene.solver.kind {
-        SolverKind::Eulerian => Ok(Ok(WarmStart::Profiles(profiles(from)?))),
-        SolverKind::Lagrangian => {
-            Ok(saltus_solvers::run::checkpoint::read(from).map_err(|e| e.to_string()).and_then(|r| {
-                let w = WarmStart::State(Box::new(r));
-                saltus_solvers::warm_start_refusal(scene, &w).map_or(Ok(w), Err)
-            }))
-        }
-    }
-}
-
 /// Run `scene` into `dir` from the final state of the run in `from`, or from rest when
 /// the state cannot start it: then with the reason.
 pub fn run_from(
@@ -81,7 +56,7 @@ pub fn run_from(
     from: &Path,
     stop: &mut dyn FnMut(&saltus_solvers::Progress) -> bool,
 ) -> anyhow::Result<(runner::RunOutcome, Option<String>)> {
-    let (warm_start, refused) = match state(scene, from)? {
+    let (warm_start, refused) = match runner::warm_state(scene, from)? {
         Ok(w) => (Some(w), None),
         Err(why) => (None, Some(why)),
     };

@@ -3,20 +3,7 @@
 
 use super::solver::Eulerian;
 use crate::output::Profiles;
-
-/// Linear interpolation of `(x, y)` (x increasing) at `at`, the end values beyond.
-fn interpolate(x: &[f64], y: &[f64], at: f64) -> f64 {
-    let n = x.len();
-    if at <= x[0] {
-        return y[0];
-    }
-    if at >= x[n - 1] {
-        return y[n - 1];
-    }
-    let k = x.partition_point(|&v| v <= at).clamp(1, n - 1);
-    let t = (at - x[k - 1]) / (x[k] - x[k - 1]);
-    y[k - 1] + t * (y[k] - y[k - 1])
-}
+use crate::run::start_profiles::StartProfiles;
 
 impl Eulerian<'_> {
     /// Take phi, u_f, u_p (and theta_g of a kinetic closure) from `p`, interpolated in z
@@ -31,29 +18,14 @@ impl Eulerian<'_> {
         if self.s.kw.is_some() {
             return Err("the k and omega of a two-equation turbulence closure are not in the profiles".into());
         }
-        let z = p.get("z").ok_or("the profiles have no `z` column")?;
-        let ok = z.len() >= 2 && z.iter().all(|v| v.is_finite()) && z.windows(2).all(|w| w[1] > w[0]);
-        if !ok {
-            return Err("the profiles' `z` is not an increasing column of at least two cells".into());
-        }
-        let column = |name: &str| -> Result<Option<&[f64]>, String> {
-            let Some(c) = p.get(name) else { return Ok(None) };
-            if c.len() != z.len() || !c.iter().all(|v| v.is_finite()) {
-                return Err(format!("the profiles' `{name}` is not {} finite numbers", z.len()));
-            }
-            Ok(Some(c))
-        };
-        let uf = column("u_f")?.ok_or("the profiles have no `u_f` column")?;
-        let (phi, up) = (column("phi")?, column("u_p")?.unwrap_or(uf));
-        let temp = if self.kinetic { column("theta_g")? } else { None };
+        let p = StartProfiles::new(p, self.kinetic)?;
         let centres = self.op.grid().centres().to_vec();
         let dz = self.op.grid().dz();
         for (i, &zc) in centres.iter().enumerate() {
-            self.s.phi[i] = phi.map_or(0.0, |phi| interpolate(z, phi, zc).max(0.0));
-            self.s.uf[i] = interpolate(z, uf, zc);
-            self.s.up[i] = interpolate(z, up, zc);
-            if let Some(t) = temp {
-                let v = interpolate(z, t, zc);
+            self.s.phi[i] = p.phi(zc);
+            self.s.uf[i] = p.u_f(zc);
+            self.s.up[i] = p.u_p(zc);
+            if let Some(v) = p.theta_g(zc) {
                 if v > 0.0 {
                     self.s.temp[i] = v;
                 }
@@ -74,19 +46,5 @@ impl Eulerian<'_> {
         self.s.flux.iter_mut().for_each(|v| *v = 0.0);
         self.s.drift_flux.iter_mut().for_each(|v| *v = 0.0);
         self.evaluate().map_err(|b| format!("the warm state: {b}"))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::interpolate;
-
-    #[test]
-    fn interpolation_is_linear_inside_and_constant_beyond() {
-        let (x, y) = ([0.0, 1.0, 3.0], [0.0, 2.0, 0.0]);
-        assert_eq!(interpolate(&x, &y, -1.0), 0.0);
-        assert_eq!(interpolate(&x, &y, 0.5), 1.0);
-        assert_eq!(interpolate(&x, &y, 2.0), 1.0);
-        assert_eq!(interpolate(&x, &y, 5.0), 0.0);
     }
 }

@@ -162,11 +162,10 @@ impl Stepper for Lagrangian<'_> {
         match from {
             crate::run::WarmStart::State(r) => {
                 let parent = state::decode(&r.state).map_err(|e| format!("{}: {e}", r.file.display()))?;
-                self.warm_start_from(parent).map_err(|e| format!("{}: {e}", r.file.display()))
+                let fluid = crate::lagrangian::run::warm::carries_fluid(self.params.scene, r);
+                self.warm_start_from(parent, fluid).map_err(|e| format!("{}: {e}", r.file.display()))
             }
-            crate::run::WarmStart::Profiles(_) => {
-                Err("the DEM starts from another run's grains (its checkpoint), not from profiles".into())
-            }
+            crate::run::WarmStart::Profiles(p) => self.start_from_profiles(p),
         }
     }
 }

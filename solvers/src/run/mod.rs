@@ -21,6 +21,7 @@ pub mod cpu;
 pub mod history;
 pub mod paraview;
 pub mod phases;
+pub mod start_profiles;
 pub mod timing;
 
 use std::borrow::Cow;

@@ -64,7 +64,11 @@ impl Lagrangian<'_> {
             }
         }
         self.state.dem.reset_topology();
-        self.start_flow(None)
+        self.start_flow(None)?;
+        match self.state.start.take() {
+            Some(start) => self.start_with(&start),
+            None => Ok(()),
+        }
     }
 
     /// Start the flow on the grains as they lie: the column fitted to their deposit (with
@@ -103,7 +107,7 @@ impl Lagrangian<'_> {
     /// are summed on slices of the column's height that reach above the highest grain: a
     /// deposit packed looser than `bed_phi` stands above `bed_height`, and under shallow
     /// water above the scene's column, whose top would otherwise cap the measure.
-    fn measure_deposit_surface(&self) -> f64 {
+    pub(super) fn measure_deposit_surface(&self) -> f64 {
         let d = self.params.mat.d;
         let dz = self.state.field.dz;
         let base = self.state.field.base;

@@ -230,6 +230,7 @@ impl<'a> Lagrangian<'a> {
                 cell_volume: cfg.domain.length * cfg.domain.width * dz,
                 bed_surface: cfg.bed_surface(),
                 slip: SlipAverage::new(if slip_average { cells } else { 0 }),
+                start: None,
             },
             work: Workspace::new(n, cells, pool),
         })

@@ -23,6 +23,7 @@ use crate::lagrangian::stats::granular::GranularStats;
 use crate::lagrangian::stats::statistics::Stats;
 use crate::lagrangian::stats::steady::Steady;
 use crate::lagrangian::stats::truncation::Truncation;
+use crate::run::start_profiles::StartProfiles;
 
 /// What the run is doing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -78,6 +79,11 @@ pub struct State {
     /// time averages of the cell-mean relative velocity for the drag damping of a
     /// two-equation closure (Cheng et al. eq 24); no cell when the closure does not ask
     pub(crate) slip: SlipAverage,
+    /// the profiles whose velocities the flow starts with at the end of the deposition
+    /// (`saltus run --warm-start` from a two-fluid run), until it starts; saved after the
+    /// series (`save`), so that a checkpoint written without it still reads
+    #[serde(skip)]
+    pub(crate) start: Option<StartProfiles>,
 }
 
 impl State {
@@ -117,10 +123,13 @@ fn options() -> impl bincode::Options {
 }
 
 /// Append `state` to `out`, then its batched transport rate (the averaging window's
-/// series), which a checkpoint of an earlier program lacks.
+/// series) and the profiles the flow is to start from, which a checkpoint of an earlier
+/// program lacks.
 pub(crate) fn save(state: &State, out: &mut Vec<u8>) -> Result<(), String> {
-    options().serialize_into(&mut *out, state).map_err(|e| format!("cannot encode the DEM state: {e}"))?;
-    options().serialize_into(out, &state.truncation).map_err(|e| format!("cannot encode the DEM state: {e}"))
+    let fail = |e: bincode::Error| format!("cannot encode the DEM state: {e}");
+    options().serialize_into(&mut *out, state).map_err(fail)?;
+    options().serialize_into(&mut *out, &state.truncation).map_err(fail)?;
+    options().serialize_into(out, &state.start).map_err(fail)
 }
 
 /// The state `save` wrote, after checking that its sizes fit together: a state that does
@@ -135,8 +144,14 @@ pub(crate) fn decode(bytes: &[u8]) -> Result<State, String> {
     if !rest.is_empty() {
         s.truncation = options()
             .with_limit(rest.len() as u64)
-            .deserialize(rest)
+            .deserialize_from(&mut rest)
             .map_err(|e| format!("cannot decode the DEM state's transport-rate series: {e}"))?;
+    }
+    if !rest.is_empty() {
+        s.start = options()
+            .with_limit(rest.len() as u64)
+            .deserialize_from(&mut rest)
+            .map_err(|e| format!("cannot decode the DEM state's starting profiles: {e}"))?;
     }
     if !s.fits() {
         return Err(format!(
