@@ -66,6 +66,7 @@ def quotes():
         ("docs/validation/chassagne2023.md", f"| qs*, d/4 cells (120) | 2.337 | {qs:.3f} | +{diff:.1f} % |"),
         ("docs/validation/cheng.md", f"| Muste NS1 | 0.86 | {rouse['dilute_muste_ns1']['rouse_number']:.3f} ("),
         ("docs/performance.md", f"| `9266597` | 8.63 ms [8.47, 8.84] | {steps} | {t:.0f} s | {qs!r} |"),
+        ("docs/performance.md", f"8.6 ms to steady state ({steps} steps, {t:.0f} s simulated)"),
         ("docs/performance.md", f"| 0.5 (default) | {steps} | {c1['rejected_steps']} | {qs!r} |"),
         ("docs/performance.md", f"qs* of case 1 is 2.531727275329304 against {qs!r}"),
         ("docs/tutorial.md", f"steady after {t:.6f} s simulated ({steps} steps, {c1['rejected_steps']} rejected)"),
