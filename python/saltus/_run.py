@@ -156,6 +156,7 @@ def run(
     quiet: bool = True,
     restart: Optional[PathLike] = None,
     closures: Optional[PathLike] = None,
+    warm_start: Optional[PathLike] = None,
 ) -> Result:
     """Run a scene, as ``saltus run SCENE --set K=V ... --out DIR``.
 
@@ -181,6 +182,12 @@ def run(
             ``fitted.toml`` of :func:`diagnose` with ``fit=True``) whose tables replace the
             scene's, family by family, before ``set``; as ``saltus run SCENE --closures
             FILE``. The resolved scene records it in ``meta.closures_file``.
+        warm_start: the folder of a finished run whose final state the run starts from,
+            as ``saltus run SCENE --warm-start DIR``: an Eulerian scene from its
+            profiles; a DEM scene from the grains of its checkpoint (and its fluid column
+            under the same forcing), or from a two-fluid run's velocities after its own
+            deposition (docs/lagrangian.md, "Warm starts"). Refused (SceneError) with
+            ``restart``, or when the folder holds no state the scene can take.
 
     Returns:
         the :class:`Result` of the last state, written to ``out`` (``profiles.csv``,
@@ -204,14 +211,15 @@ def run(
     import_modules(_native.scene_modules(scene_path, set))  # the scene's [python] modules
     from_dir = None if restart is None else fspath(restart, "restart")
     cl = None if closures is None else fspath(closures, "closures")
+    warm = None if warm_start is None else fspath(warm_start, "warm_start")
     if out is False:
         with tempfile.TemporaryDirectory(prefix="saltus-") as tmp:
-            raw = _native.run(scene_path, set, tmp, quiet, from_dir, cl)
+            raw = _native.run(scene_path, set, tmp, quiet, from_dir, cl, warm)
             series, snaps = _outputs.read_outputs(Path(tmp))
             raw["out"] = None
             raw["figure"] = None
     else:
-        raw = _native.run(scene_path, set, None if out is None else fspath(out, "out"), quiet, from_dir, cl)
+        raw = _native.run(scene_path, set, None if out is None else fspath(out, "out"), quiet, from_dir, cl, warm)
         series, snaps = _outputs.read_outputs(Path(raw["out"]))
     interrupt = raw.pop("interrupt")
     result = Result(

@@ -46,7 +46,7 @@ pub fn check<'py>(
 /// outputs are written and the exception the signal handler raised is returned under
 /// `interrupt`, for the caller to raise.
 #[pyfunction]
-#[pyo3(signature = (scene, set=None, out=None, quiet=true, restart=None, closures=None))]
+#[pyo3(signature = (scene, set=None, out=None, quiet=true, restart=None, closures=None, warm_start=None))]
 pub fn run<'py>(
     py: Python<'py>,
     scene: PathBuf,
@@ -55,11 +55,26 @@ pub fn run<'py>(
     quiet: bool,
     restart: Option<PathBuf>,
     closures: Option<PathBuf>,
+    warm_start: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let set = overrides(set)?;
     let s = py
         .detach(|| Scene::from_file_with_closures(&scene, &set, closures.as_deref()))
         .map_err(|e| load_error(py, e))?;
+    if let (Some(_), Some(from)) = (&restart, &warm_start) {
+        return Err(SceneError::new_err(format!(
+            "warm_start {}: a continued run (restart) goes on from its own checkpoint",
+            from.display()
+        )));
+    }
+    let warm = match &warm_start {
+        None => None,
+        Some(from) => match runner::warm_state(&s, from) {
+            Ok(Ok(w)) => Some(w),
+            Ok(Err(why)) => return Err(SceneError::new_err(format!("warm_start {}: {why}", from.display()))),
+            Err(e) => return Err(SceneError::new_err(format!("warm_start: {e:#}"))),
+        },
+    };
     let out = out.unwrap_or_else(|| runner::default_out(&s));
     let bar =
         if quiet { indicatif::ProgressBar::hidden() } else { runner::progress_bar(std::io::stderr().is_terminal()) };
@@ -77,7 +92,7 @@ pub fn run<'py>(
             restart: restart.clone(),
             log_every: (!quiet).then(|| std::time::Duration::from_secs_f64(runner::LOG_INTERVAL)),
             max_wall: None,
-            warm_start: None,
+            warm_start: warm.clone(),
         };
         runner::run_scene_with(&s, &out, &bar, &settings, &mut stop)
     });

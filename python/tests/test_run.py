@@ -263,3 +263,28 @@ def test_other_threads_run_during_a_run(root):
     assert r.ending == "end_time" and r.wall > 0.1
     gap = max(np.diff(ticks))
     assert gap < 0.5 * r.wall, (gap, r.wall)
+
+
+def test_warm_start_is_the_command_lines(root, cli, tmp_path):
+    """`warm_start` starts from a finished run's final state as `--warm-start` does: an
+    Eulerian column from its own steady profiles is steady again in a fifth of the steps
+    or fewer, with the same rate (the column's fixed point, to the steady tolerance), and
+    the Python run writes what the command line writes; refusals name the folder."""
+    scene = str(root / "tests/fixtures/scenes/small_dem_bed.toml")
+    two_fluid = {"solver.type": "eulerian", "closures.granular": {"type": "mu_i"}}
+    first = saltus.run(scene, set=two_fluid, out=tmp_path / "first")
+    again = saltus.run(scene, set=two_fluid, out=tmp_path / "again", warm_start=tmp_path / "first")
+    assert first.ending == again.ending == "steady"
+    assert again.summary["steps"] * 5 < first.summary["steps"]
+    assert again.summary["qs_star"] == pytest.approx(first.summary["qs_star"], rel=1e-5)
+    code, _, err = cli(
+        "run", scene, "--quiet", "--out", str(tmp_path / "cli"),
+        "--set", "solver.type=eulerian", "--set", "closures.granular.type=mu_i",
+        "--warm-start", str(tmp_path / "first"),
+    )
+    assert code == 0, err
+    assert (tmp_path / "cli" / "profiles.csv").read_text() == (tmp_path / "again" / "profiles.csv").read_text()
+    with pytest.raises(saltus.SceneError, match="warm_start.*not a run folder"):
+        saltus.run(scene, out=tmp_path / "x", warm_start=tmp_path / "nowhere")
+    with pytest.raises(saltus.SceneError, match="restart"):
+        saltus.run(scene, out=tmp_path / "y", restart=tmp_path / "first", warm_start=tmp_path / "first")
