@@ -25,7 +25,7 @@ fn run_refuses_bad_scenes_cleanly() {
 
 /// Bad inputs refused by `check` and by `run` alike, before any work (no output folder),
 /// each naming the key: (override, key named).
-const BAD_INPUTS: [(&str, &str); 16] = [
+const BAD_INPUTS: [(&str, &str); 18] = [
     ("solver.dt_maxx=1", "solver.dt_maxx"),
     ("solver.eulerian.dt_maxx=1", "solver.eulerian.dt_maxx"),
     ("solver.eulerian.dt_max=nan", "solver.eulerian.dt_max"),

@@ -1,7 +1,7 @@
 //! The drag's particle Reynolds number under a fluctuation closure's draws (key
 //! `drag_reynolds` of `eim`).
 
-use saltus_core::{SlipReynolds, Params};
+use saltus_core::{Params, SlipReynolds};
 use serde::{Deserialize, Serialize};
 
 /// Which slip the drag's particle Reynolds number takes when the grain sees a fluctuation

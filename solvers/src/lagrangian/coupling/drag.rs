@@ -571,7 +571,8 @@ mod tests {
             assert!((c[0] / c[2] - 1.0).abs() > 1e-3 && (c[1] / c[2] - 1.0).abs() > 1e-3, "u {u}, u' {a}: {c:?}");
         }
         // and the two forms agree without a fluctuation
-        let (i, m) = (forces(0.3, &[0.0], DragReynoldsNumber::Instantaneous), forces(0.3, &[0.0], DragReynoldsNumber::Mean));
+        let (i, m) =
+            (forces(0.3, &[0.0], DragReynoldsNumber::Instantaneous), forces(0.3, &[0.0], DragReynoldsNumber::Mean));
         assert_eq!(i, m);
     }
 
