@@ -25,7 +25,7 @@ fn run_refuses_bad_scenes_cleanly() {
 
 /// Bad inputs refused by `check` and by `run` alike, before any work (no output folder),
 /// each naming the key: (override, key named).
-const BAD_INPUTS: [(&str, &str); 16] = [
+const BAD_INPUTS: [(&str, &str); 18] = [
     ("solver.dt_maxx=1", "solver.dt_maxx"),
     ("solver.eulerian.dt_maxx=1", "solver.eulerian.dt_maxx"),
     ("solver.eulerian.dt_max=nan", "solver.eulerian.dt_max"),
@@ -42,6 +42,8 @@ const BAD_INPUTS: [(&str, &str); 16] = [
     ("particles.contact.law=\"sticky\"", "particles.contact.law"),
     ("closures.granular.g0={type=\"chialvo_sundaresan\", a00=1}", "closures.granular.g0.a00"),
     ("closures.turbulence.form=\"nope\"", "closures.turbulence.form"),
+    ("solver.lagrangian.phi_diffusion=1e308", "solver.lagrangian.phi_diffusion"),
+    ("closures.fluctuation={type=\"eim\", drag_reynolds=\"median\"}", "closures.fluctuation.drag_reynolds"),
 ];
 
 #[test]
@@ -73,6 +75,11 @@ fn check_refuses_exactly_what_run_refuses() {
         ("solver.eulerian.target_field_change=0", "solver.eulerian.target_field_change"),
         ("solver.eulerian.target_field_change=nan", "solver.eulerian.target_field_change"),
         ("solver.eulerian.target_field_change=1e308", "solver.eulerian.target_field_change"),
+        ("solver.lagrangian.phi_diffusion=nan", "solver.lagrangian.phi_diffusion"),
+        ("solver.lagrangian.phi_diffusion=1e308", "solver.lagrangian.phi_diffusion"),
+        ("solver.lagrangian.phi_diffusion=-1", "solver.lagrangian.phi_diffusion"),
+        ("solver.lagrangian.phi_average=\"weekly\"", "solver.lagrangian.phi_average"),
+        ("closures.fluctuation={type=\"eim\", drag_reynolds=\"median\"}", "closures.fluctuation.drag_reynolds"),
     ] {
         for kind in ["eulerian", "lagrangian"] {
             let t = format!("solver.type={kind}");

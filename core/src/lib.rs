@@ -28,7 +28,9 @@ pub mod runtime;
 pub mod scene;
 
 pub use closure::drag::DragLaw;
-pub use closure::fluctuation::{DriftForm, FlowScales, Fluctuation, FluctuationDraw, ParticleSlip, TurbulencePoint};
+pub use closure::fluctuation::{
+    DriftForm, FlowScales, Fluctuation, FluctuationDraw, ParticleSlip, SlipReynolds, TurbulencePoint,
+};
 pub use closure::granular::{
     Grains, GranularStress, JohnsonJacksonElastic, KineticCoefficients, KineticTheory, LocalRheology, LocalState,
     SaltationInput,

@@ -237,6 +237,25 @@ fn coupled_run_is_bit_identical_on_one_and_two_threads() {
 }
 
 #[test]
+fn coupled_run_with_cheng_eqs_7_14_and_17_is_bit_identical_on_one_and_two_threads() {
+    // the period mean and the diffusion of the fluid's phi (eqs 14, 17) and the drag at
+    // the mean slip's Re_p (eq 7) under the eddy interaction model
+    let s = small_bed(&[
+        "closures.turbulence={type=\"k_omega\"}",
+        "closures.fluctuation={type=\"eim\", drag_reynolds=\"mean\"}",
+        "solver.lagrangian.phi_average=\"fluid_period\"",
+        "solver.lagrangian.phi_diffusion=1",
+    ]);
+    let (one, _) = state_in_pool(&s, 1);
+    let (two, _) = state_in_pool(&s, 2);
+    let differing = one.iter().zip(&two).filter(|(a, b)| a != b).count();
+    assert_eq!(differing, 0, "{differing} of {} values differ between 1 and 2 threads", one.len());
+    // the options act: the run without them differs
+    let plain = small_bed(&["closures.turbulence={type=\"k_omega\"}", "closures.fluctuation={type=\"eim\"}"]);
+    assert_ne!(state_in_pool(&plain, 1).0, one);
+}
+
+#[test]
 fn coupled_run_keeps_its_particles_and_dephases_the_eddies() {
     // (the momentum transfer of beta, Maurin eq 18, is the property test
     // lagrangian::coupling::averaging::tests::the_fluid_at_the_velocity_the_grains_saw_loses_exactly_their_drag,

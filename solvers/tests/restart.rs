@@ -198,3 +198,22 @@ fn a_restart_from_another_scene_or_a_bad_checkpoint_is_refused_by_name() {
     assert!(e.contains("nowhere"), "{e}");
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// Cheng's eq 14 sums the slices of every DEM step of a fluid period, and eq 7's drag
+/// reads the draws: a checkpoint written inside a period (a fluid period of several
+/// thousand steps, the driver's unit being at most `CHECK_STEPS` of them) carries the
+/// window, so the restarted run ends bit for bit as the uninterrupted one.
+#[test]
+fn a_run_with_the_period_mean_and_diffusion_of_phi_restarts_bit_for_bit() {
+    stop_and_restart(
+        "phi_window",
+        Phase::Flow,
+        0.055,
+        &[
+            "solver.lagrangian.fluid_period=0.1",
+            "solver.lagrangian.phi_average=\"fluid_period\"",
+            "solver.lagrangian.phi_diffusion=1",
+            "closures.fluctuation={type=\"eim\", drag_reynolds=\"mean\"}",
+        ],
+    );
+}

@@ -9,7 +9,7 @@ use saltus_core::{
 };
 use serde::{Deserialize, Serialize};
 
-use super::MeanField;
+use super::{DragReynoldsNumber, MeanField};
 use saltus_core::DriftForm;
 
 /// Eddy interaction model (EIM) driven by a k-omega closure
@@ -22,7 +22,9 @@ use saltus_core::DriftForm;
 /// * Source: Cheng, Chauchat, Hsu & Calantoni, section 2.4, eqs 36-37 (C_t = 1/6 of the
 ///   eddy life time, section 2.3; C_mu from their table 1).
 /// * Defaults: `c0 = 3` (Cheng's calibration on dilute suspension, confirmed on sheet
-///   flow), `c_mu = 0.09` (table 1), `mean_field = "gradient"` (see [`MeanField`]).
+///   flow), `c_mu = 0.09` (table 1), `mean_field = "gradient"` (see [`MeanField`]),
+///   `drag_reynolds = "instantaneous"` (the DEM drag's Re_p of the slip with u'; `"mean"`
+///   takes Cheng's eq 7, the slip without u': [`DragReynoldsNumber`]).
 /// * Valid range: `c0` in (0, 20], `c_mu` in (0, 1]. Needs k and omega from the turbulence
 ///   closure (refused with `mixing_length` or `laminar`).
 ///
@@ -76,11 +78,15 @@ pub struct EddyInteraction {
     pub c_mu: f64,
     /// mean-field form of the drift: `ito` (the draws' diffusion limit) or `gradient`
     pub mean_field: MeanField,
+    /// the DEM drag's particle Reynolds number: of the slip with u' (`instantaneous`) or
+    /// without it (`mean`, Cheng eq 7)
+    #[serde(skip_serializing_if = "DragReynoldsNumber::is_instantaneous")]
+    pub drag_reynolds: DragReynoldsNumber,
 }
 
 impl Default for EddyInteraction {
     fn default() -> Self {
-        Self { c0: 3.0, c_mu: 0.09, mean_field: MeanField::Gradient }
+        Self { c0: 3.0, c_mu: 0.09, mean_field: MeanField::Gradient, drag_reynolds: DragReynoldsNumber::Instantaneous }
     }
 }
 
@@ -130,6 +136,10 @@ impl Fluctuation for EddyInteraction {
 
     fn drift_form(&self) -> DriftForm {
         self.mean_field.form()
+    }
+
+    fn drag_reynolds(&self) -> saltus_core::SlipReynolds {
+        self.drag_reynolds.form()
     }
 
     fn diffusivity(&self, t: &TurbulencePoint, _s: &FlowScales) -> f64 {

@@ -5,11 +5,13 @@
 //! Random numbers come only from the caller's seeded [`saltus_core::rng::Rng`]; each model
 //! documents how many it consumes per draw and in which order.
 
+pub mod drag_reynolds;
 pub mod drw;
 pub mod eim;
 pub mod none;
 pub mod schmidt;
 
+pub use drag_reynolds::DragReynoldsNumber;
 pub use drw::DiscreteRandomWalk;
 pub use eim::EddyInteraction;
 pub use none::NoFluctuation;

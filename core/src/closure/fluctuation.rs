@@ -61,6 +61,38 @@ pub enum DriftForm {
     Ito,
 }
 
+/// Which slip the particle Reynolds number of the drag takes when the fluid a grain sees
+/// carries a fluctuation u' (the relative velocity u_r = u_f + u' - v).
+///
+/// * `Instantaneous`: Re_p = |u_f + u' - v| d / nu_f, the slip of the force itself.
+/// * `Mean`: Re_p = |u_f - v| d / nu_f, the Reynolds-averaged fluid velocity, as Cheng,
+///   Chauchat, Hsu & Calantoni's eq 7 writes it (Re_p = (1 - phi) |u_f - v| d / nu_f, the
+///   overbar the Reynolds average; the force of eq 6 keeps the instantaneous slip,
+///   F = (1/2) C_D(Re_p) A |u_r| u_r). The hindrance's Re_p is the same one.
+///
+/// With u' = 0 both are the same number.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SlipReynolds {
+    /// the instantaneous slip |u_f + u' - v|
+    #[default]
+    Instantaneous,
+    /// the mean slip |u_f - v| (Cheng eq 7)
+    Mean,
+}
+
+impl SlipReynolds {
+    /// The slip speed of Re_p for the relative velocity `ur` = u_f + u' - v of a grain
+    /// whose fluctuation is `fluct` = u' (m/s).
+    #[inline]
+    pub fn slip(self, ur: [f64; 3], fluct: [f64; 3]) -> f64 {
+        let u = match self {
+            SlipReynolds::Instantaneous => ur,
+            SlipReynolds::Mean => [ur[0] - fluct[0], ur[1] - fluct[1], ur[2] - fluct[2]],
+        };
+        (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt()
+    }
+}
+
 /// A fluctuation closure.
 #[typetag::serde(tag = "type")]
 pub trait Fluctuation: Describe + Send + Sync + std::fmt::Debug {
@@ -91,6 +123,12 @@ pub trait Fluctuation: Describe + Send + Sync + std::fmt::Debug {
     /// Acts on the particles' draws only, not on the mean-field face.
     fn above_bed(&self) -> Option<f64> {
         None
+    }
+
+    /// The slip of the drag's particle Reynolds number under this closure's draws
+    /// ([`SlipReynolds`]); the instantaneous one unless the model says otherwise.
+    fn drag_reynolds(&self) -> SlipReynolds {
+        SlipReynolds::Instantaneous
     }
 
     /// Draws for a chunk of particles: draw `j` at `t[j]`, `p[j]` from the stream

@@ -113,6 +113,31 @@ impl DragVelocity {
     }
 }
 
+/// Which volume fraction the column and the particles' hindrance read at a fluid update
+/// (`phi_average`).
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum PhiAverage {
+    /// the slice volumes of the grains at the update's DEM step (Maurin et al. 2015 eq 6)
+    #[default]
+    Step,
+    /// the mean of the slice volumes over the N_s DEM steps of the fluid period that ends
+    /// at the update, phi = (1 / N_s) sum_j phi_j (Cheng, Chauchat, Hsu & Calantoni,
+    /// eq 14)
+    FluidPeriod,
+}
+
+impl PhiAverage {
+    /// The one-step slice (the default, not written in a resolved scene).
+    pub fn is_step(&self) -> bool {
+        *self == PhiAverage::Step
+    }
+}
+
+/// Largest diffusion length of the fluid's volume fraction, `phi_diffusion`, in grain
+/// diameters (Cheng et al. take 1, after eq 17).
+pub const MAX_PHI_DIFFUSION: f64 = 10.0;
+
 /// One particle of `initial = "list"`.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -209,6 +234,15 @@ pub struct LagrangianSettings {
     pub drag_velocity: DragVelocity,
     /// fluid resolution period tau_f (s)
     pub fluid_period: f64,
+    /// volume fraction of the fluid's coupling: `"step"` (the slice volumes at the update)
+    /// or `"fluid_period"` (their mean over the DEM steps of the fluid period, Cheng et al.
+    /// eq 14)
+    #[serde(skip_serializing_if = "PhiAverage::is_step")]
+    pub phi_average: PhiAverage,
+    /// diffusion length L_d of the fluid's volume fraction in grain diameters (Cheng et al.
+    /// eq 17, D_t = L_d^2 / tau_f over one fluid period, implicit; Cheng: 1); 0: none
+    #[serde(skip_serializing_if = "super::tables::is_zero")]
+    pub phi_diffusion: f64,
     /// deposition time before the flow starts, fluid at rest (s); default three
     /// free-fall times of the released lattice under the buoyant weight
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -271,6 +305,8 @@ impl Default for LagrangianSettings {
             fluid: FluidMode::Coupled,
             drag_velocity: DragVelocity::Centre,
             fluid_period: 1.0e-2,
+            phi_average: PhiAverage::Step,
+            phi_diffusion: 0.0,
             settle_time: None,
             stats_start: 0.0,
             granular_fields: None,
@@ -367,6 +403,7 @@ impl LagrangianSettings {
         check(f, &p("gas_temperature"), self.gas_temperature, ParamRange::closed(0.0, 1e6))?;
         check(f, &p("dt_safety"), self.dt_safety, ParamRange::open_closed(0.0, 0.3))?;
         check(f, &p("fluid_period"), self.fluid_period, ParamRange::open_closed(0.0, MAX_TIME))?;
+        check(f, &p("phi_diffusion"), self.phi_diffusion, ParamRange::closed(0.0, MAX_PHI_DIFFUSION))?;
         if let Some(t) = self.settle_time {
             check(f, &p("settle_time"), t, ParamRange::closed(0.0, MAX_TIME))?;
         }

@@ -40,8 +40,8 @@ pub use closures_file::{apply_closures_file, closures_file_tables, CLOSURES_FILE
 pub use domain::{CellSize, Domain, Top, CELLS_PER_DIAMETER, MAX_CELLS, MAX_HEIGHT, MAX_STRETCH_DECADES};
 pub use forcing::{Forcing, Quantity, Signal};
 pub use lagrangian::{
-    Case, DragVelocity, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, FREY_LEVELS, MAX_FLUID_CELLS, MAX_PARTICLES,
-    MAX_SIDE_DIAMETERS,
+    Case, DragVelocity, PhiAverage, CELL_DIAMETERS, FLUID_CELLS_PER_DIAMETER, FREY_LEVELS, MAX_FLUID_CELLS,
+    MAX_PARTICLES, MAX_PHI_DIFFUSION, MAX_SIDE_DIAMETERS,
 };
 pub use overrides::{apply_override, parse_table, FACES};
 pub use presets::{Accuracy, Preset};

@@ -28,6 +28,15 @@
 //! cell at each fluid update instead of per particle and step (the particle's phi is its
 //! cell's anyway).
 //!
+//! The particle Reynolds number of C_D and of the hindrance is that of u_r, unless the
+//! fluctuation closure asks for the mean slip ([`saltus_core::SlipReynolds::Mean`], key
+//! `drag_reynolds = "mean"` of `eim`: Cheng, Chauchat, Hsu & Calantoni eq 7, Re_p =
+//! |u_f - v| d / nu_f without u', the force of their eq 6 keeping |u_r| u_r): then
+//! k_p = (pi/8) rho_f nu_f d C_D(Re*_mean) Re_inst f(phi, Re_mean). Where the mean slip
+//! vanishes and u' does not (a grain at rest in the bed under a draw), that k_p grows
+//! without bound (C_D Re_mean -> 24 while Re_inst stays), so it is capped at m_p / dt, the
+//! largest coefficient the explicit DEM step keeps stable.
+//!
 //! Fluctuations (`drw` now, any [`saltus_core::Fluctuation`]): each particle carries its
 //! own draw and the time left before the next one, and its own random stream
 //! `stream(seed, particle index)`, so the draws do not depend on the thread count. The
@@ -38,7 +47,9 @@ use rand::Rng as _;
 use saltus_core::grain::ball_volume;
 use saltus_core::rng::{stream, Rng};
 use saltus_core::scene::DragVelocity;
-use saltus_core::{DragLaw, FlowScales, Fluctuation, FluctuationDraw, Hindrance, ParticleSlip, TurbulencePoint};
+use saltus_core::{
+    DragLaw, FlowScales, Fluctuation, FluctuationDraw, Hindrance, ParticleSlip, SlipReynolds, TurbulencePoint,
+};
 
 use rayon::prelude::*;
 
@@ -309,6 +320,7 @@ impl FluidForces {
         out: &mut [Vec<f64>; 3],
     ) {
         let (rho_f, nu_f, rho_p, fallback) = (self.rho_f, self.nu_f, self.rho_p, self.fallback_period);
+        let mean_re = models.fluctuation.is_some_and(|f| f.drag_reynolds() == SlipReynolds::Mean);
         let nm = p.n_mobile;
         let n_out = upto.min(nm);
         // per-particle state and scratch cut into the same fixed chunks, zipped: particle
@@ -420,8 +432,13 @@ impl FluidForces {
                     let uf = field.seen(models.velocity, z, p.radius[a]);
                     let u = [uf + fluct[i][0] - p.vx[a], fluct[i][1] - p.vy[a], fluct[i][2] - p.vz[a]];
                     let d = 2.0 * p.radius[a];
-                    let speed = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
-                    re[i] = speed * d / nu_f;
+                    re[i] = if mean_re {
+                        // Cheng eq 7: Re_p of the mean slip u_f - v, without u'
+                        SlipReynolds::Mean.slip(u, fluct[i]) * d / nu_f
+                    } else {
+                        let speed = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+                        speed * d / nu_f
+                    };
                     re_star[i] = (field.re_ratio[cell] * re[i]).max(1e-12);
                     phi_p[i] = field.phi[cell];
                     // the hindrance held per cell, read here with the cell at hand
@@ -436,7 +453,16 @@ impl FluidForces {
                 }
                 for i in 0..n {
                     let d = 2.0 * p.radius[o + i];
-                    k[i] = std::f64::consts::PI / 8.0 * rho_f * nu_f * d * cd[i] * re[i] * hind[i];
+                    if mean_re {
+                        // eq 6's force keeps the instantaneous slip: k_p = (pi/8) rho_f nu_f d
+                        // C_D(Re_mean) Re_inst f(Re_mean), at most m_p / dt (module docs)
+                        let [ax, ay, az] = ur[i];
+                        let re_inst = (ax * ax + ay * ay + az * az).sqrt() * d / nu_f;
+                        let kp = std::f64::consts::PI / 8.0 * rho_f * nu_f * d * cd[i] * re_inst * hind[i];
+                        k[i] = kp.min(rho_p * sphere_volume(d) / dt);
+                    } else {
+                        k[i] = std::f64::consts::PI / 8.0 * rho_f * nu_f * d * cd[i] * re[i] * hind[i];
+                    }
                     urx[i] = ur[i][0];
                 }
                 if let Some((ox, oy, oz)) = out {
@@ -479,5 +505,83 @@ impl FluidForces {
     pub fn response_time(&self, p: &Particles, a: usize) -> f64 {
         let m = self.rho_p * sphere_volume(2.0 * p.radius[a]);
         m / self.k[a]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use saltus_closures::drag::HaiderLevenspiel;
+    use saltus_closures::fluctuation::{DragReynoldsNumber, EddyInteraction};
+    use saltus_closures::hindrance::DiFelice;
+
+    const R: f64 = 1.5e-3;
+    const RHO_P: f64 = 1192.0;
+    const DT: f64 = 1e-4;
+
+    /// Streamwise force on grains at rest mid-column in a uniform fluid `u`, each with its
+    /// own streamwise fluctuation `fl` held (no redraw), under the `eim` closure's
+    /// `drag_reynolds`.
+    fn forces(u: f64, fl: &[f64], form: DragReynoldsNumber) -> Vec<f64> {
+        let (n_cells, dz) = (20, 1e-3);
+        let mut field = FluidField::at_rest(n_cells, dz, 0.0);
+        field.set_velocity(&vec![u; n_cells]);
+        let mut p = Particles::default();
+        for _ in fl {
+            p.push([0.0, 0.0, 0.01], [0.0; 3], [0.0; 3], R, RHO_P, false);
+        }
+        let mut f = FluidForces::new(fl.len(), 1, 1000.0, 1e-6, RHO_P);
+        for (i, &a) in fl.iter().enumerate() {
+            f.fluct[i] = [a, 0.0, 0.0];
+            f.left[i] = 1e9;
+        }
+        let (drag, hindrance) = (HaiderLevenspiel { sphericity: 0.594 }, DiFelice::default());
+        let eim = EddyInteraction { drag_reynolds: form, ..EddyInteraction::default() };
+        let models =
+            DragModels { drag: &drag, hindrance: &hindrance, fluctuation: Some(&eim), velocity: DragVelocity::Centre };
+        let mut out = [vec![0.0; fl.len()], vec![0.0; fl.len()], vec![0.0; fl.len()]];
+        f.evaluate(&p, &field, &models, DT, fl.len(), &mut out);
+        out[0].clone()
+    }
+
+    /// F / (|u_r| u_r) = (1/2) rho_f C_D f A of each grain (u_r = u + u' streamwise here).
+    fn coefficients(u: f64, fl: &[f64], f: &[f64]) -> Vec<f64> {
+        fl.iter().zip(f).map(|(a, f)| f / ((u + a).abs() * (u + a))).collect()
+    }
+
+    #[test]
+    fn under_eq_7_the_drag_coefficient_does_not_see_the_fluctuation() {
+        // Cheng eq 7: C_D and the hindrance at the mean slip, eq 6's force at u_r: the
+        // coefficient F / (|u_r| u_r) is the same for u' = +a, -a and 0
+        for (u, a) in [(0.3, 0.1), (0.05, 0.04), (1.0, 0.5)] {
+            let fl = [a, -a, 0.0];
+            let c = coefficients(u, &fl, &forces(u, &fl, DragReynoldsNumber::Mean));
+            assert!((c[0] / c[2] - 1.0).abs() < 1e-12 && (c[1] / c[2] - 1.0).abs() < 1e-12, "u {u}, u' {a}: {c:?}");
+        }
+    }
+
+    #[test]
+    fn with_the_instantaneous_reynolds_number_the_drag_coefficient_follows_the_draw() {
+        // C_D(Re_p) f(Re_p) of the slip with u': a draw along the slip and one against it
+        // move the coefficient away from the mean slip's (for sphericity 0.594 C_D f has a
+        // minimum at Re_p of a few hundred, eqs 7-13), by a margin the draw sets
+        for (u, a) in [(0.3, 0.1), (0.05, 0.04), (1.0, 0.5)] {
+            let fl = [a, -a, 0.0];
+            let c = coefficients(u, &fl, &forces(u, &fl, DragReynoldsNumber::Instantaneous));
+            assert!((c[0] / c[2] - 1.0).abs() > 1e-3 && (c[1] / c[2] - 1.0).abs() > 1e-3, "u {u}, u' {a}: {c:?}");
+        }
+        // and the two forms agree without a fluctuation
+        let (i, m) =
+            (forces(0.3, &[0.0], DragReynoldsNumber::Instantaneous), forces(0.3, &[0.0], DragReynoldsNumber::Mean));
+        assert_eq!(i, m);
+    }
+
+    #[test]
+    fn a_fluctuation_on_a_grain_moving_with_the_mean_fluid_gets_a_bounded_coefficient() {
+        // mean slip 0, u' = 0.1 m/s: eq 7's C_D(Re_mean -> 0) Re_inst has no bound; the
+        // coefficient is capped at m_p / dt, finite and positive
+        let f = forces(0.0, &[0.1], DragReynoldsNumber::Mean);
+        let m = RHO_P * sphere_volume(2.0 * R);
+        assert!(f[0].is_finite() && f[0] > 0.0 && f[0] <= m / DT * 0.1 * (1.0 + 1e-12), "{f:?}");
     }
 }

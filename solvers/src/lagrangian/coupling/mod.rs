@@ -5,3 +5,4 @@
 pub mod averaging;
 pub mod damping;
 pub mod drag;
+pub mod smoothing;

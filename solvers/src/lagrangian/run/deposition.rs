@@ -14,6 +14,7 @@ use crate::column::{FluidColumn, Grid};
 use crate::lagrangian::coupling::averaging::{CellSums, Seen};
 use crate::lagrangian::coupling::damping::SlipAverage;
 use crate::lagrangian::coupling::drag::{FluidField, FluidForces};
+use crate::lagrangian::coupling::smoothing::PhiWindow;
 use crate::lagrangian::stats::granular::GranularStats;
 use crate::lagrangian::stats::statistics::Stats;
 use crate::run::{Breakdown, Ending, Limits, Place};
@@ -172,6 +173,9 @@ impl Lagrangian<'_> {
         self.state.sums = CellSums::new(cells);
         if !self.state.slip.is_empty() {
             self.state.slip = SlipAverage::new(cells);
+        }
+        if !self.state.phi_window.vol.is_empty() {
+            self.state.phi_window = PhiWindow::new(cells);
         }
         let v = |x: f64| vec![x; cells];
         self.state.phi = v(0.0);

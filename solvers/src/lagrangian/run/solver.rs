@@ -2,7 +2,7 @@
 //! period (Maurin et al. 2015 section II D). This file builds it from the scene; the
 //! stepping is in `stepping.rs`, the deposition in `deposition.rs`.
 
-use saltus_core::scene::Scene;
+use saltus_core::scene::{PhiAverage, Scene};
 use saltus_core::Error;
 
 use super::config::{Config, FluidMode, Initial};
@@ -14,6 +14,7 @@ use crate::column::{FluidColumn, Grid, TopBoundary};
 use crate::lagrangian::coupling::averaging::CellSums;
 use crate::lagrangian::coupling::damping::SlipAverage;
 use crate::lagrangian::coupling::drag::{FluidField, FluidForces};
+use crate::lagrangian::coupling::smoothing::PhiWindow;
 use crate::lagrangian::engine::contact::{ContactLaw, ContactModel};
 use crate::lagrangian::engine::dem::Dem;
 use crate::lagrangian::engine::particles::Particles;
@@ -231,6 +232,7 @@ impl<'a> Lagrangian<'a> {
                 bed_surface: cfg.bed_surface(),
                 slip: SlipAverage::new(if slip_average { cells } else { 0 }),
                 start: None,
+                phi_window: PhiWindow::new(if s.numerics.phi_average == PhiAverage::FluidPeriod { cells } else { 0 }),
             },
             work: Workspace::new(n, cells, pool),
         })

@@ -18,6 +18,7 @@ use crate::column::FluidColumn;
 use crate::lagrangian::coupling::averaging::CellSums;
 use crate::lagrangian::coupling::damping::SlipAverage;
 use crate::lagrangian::coupling::drag::{FluidField, FluidForces};
+use crate::lagrangian::coupling::smoothing::PhiWindow;
 use crate::lagrangian::engine::dem::Dem;
 use crate::lagrangian::stats::granular::GranularStats;
 use crate::lagrangian::stats::statistics::Stats;
@@ -84,6 +85,12 @@ pub struct State {
     /// series (`save`), so that a checkpoint written without it still reads
     #[serde(skip)]
     pub(crate) start: Option<StartProfiles>,
+    /// the slice volumes summed over the DEM steps since the last fluid update, for the
+    /// time-mean volume fraction of Cheng et al. eq 14 (`phi_average = "fluid_period"`;
+    /// empty otherwise); saved after the transport-rate series (`save`), so that a
+    /// checkpoint written before it was kept still reads
+    #[serde(skip)]
+    pub(crate) phi_window: PhiWindow,
 }
 
 impl State {
@@ -115,6 +122,7 @@ impl State {
             && self.column.as_ref().is_none_or(|c| c.velocity().len() == cells)
             && self.granular.as_ref().is_none_or(|g| g.fits(cells))
             && (self.slip.is_empty() || self.slip.len() == cells)
+            && (self.phi_window.vol.is_empty() || self.phi_window.vol.len() == cells)
     }
 }
 
@@ -129,7 +137,12 @@ pub(crate) fn save(state: &State, out: &mut Vec<u8>) -> Result<(), String> {
     let fail = |e: bincode::Error| format!("cannot encode the DEM state: {e}");
     options().serialize_into(&mut *out, state).map_err(fail)?;
     options().serialize_into(&mut *out, &state.truncation).map_err(fail)?;
-    options().serialize_into(out, &state.start).map_err(fail)
+    options().serialize_into(&mut *out, &state.start).map_err(fail)?;
+    if state.phi_window.vol.is_empty() {
+        // a scene without eq 14's time mean writes no window
+        return Ok(());
+    }
+    options().serialize_into(out, &state.phi_window).map_err(fail)
 }
 
 /// The state `save` wrote, after checking that its sizes fit together: a state that does
@@ -152,6 +165,13 @@ pub(crate) fn decode(bytes: &[u8]) -> Result<State, String> {
             .with_limit(rest.len() as u64)
             .deserialize_from(&mut rest)
             .map_err(|e| format!("cannot decode the DEM state's starting profiles: {e}"))?;
+    }
+    // the window of eq 14's time mean, when the scene keeps one
+    if !rest.is_empty() {
+        s.phi_window = options()
+            .with_limit(rest.len() as u64)
+            .deserialize(rest)
+            .map_err(|e| format!("cannot decode the DEM state's volume-fraction window: {e}"))?;
     }
     if !s.fits() {
         return Err(format!(

@@ -16,6 +16,7 @@ use crate::column::{Closures, Coupling};
 use crate::inputs;
 use crate::lagrangian::coupling::averaging::Seen;
 use crate::lagrangian::coupling::damping::DampingLaw;
+use crate::lagrangian::coupling::smoothing;
 use crate::run::{Breakdown, Ending, Limits, Place, Stepper};
 
 impl Lagrangian<'_> {
@@ -70,6 +71,15 @@ impl Lagrangian<'_> {
             &mut self.state.u_p,
             &mut self.state.beta,
         );
+        // the fluid's volume fraction: eq 14's mean over the period's DEM steps, then
+        // eq 17's diffusion (Cheng et al.; coupling::smoothing); the reported averages
+        // keep the slices of this step
+        self.state.phi_window.take_mean(self.state.cell_volume, &mut self.state.phi);
+        let l_d = self.params.cfg.settings.numerics.phi_diffusion;
+        if l_d > 0.0 {
+            let a = (l_d * self.params.mat.d / self.state.field.dz).powi(2);
+            smoothing::diffuse(&mut self.state.phi, a, &mut self.work.diffusion);
+        }
         for (c, &phi) in self.state.phi.iter().enumerate() {
             self.state.field.phi[c] = phi.min(0.99);
             self.state.field.re_ratio[c] = self.params.hindrance.reynolds_convention().ratio(phi.min(0.99));
@@ -323,6 +333,11 @@ impl Lagrangian<'_> {
         let sampled = update && self.sample_due();
         self.apply_forcing();
         self.dem_step(update && fluid != FluidMode::Off, sampled && self.state.granular.is_some());
+        if fluid != FluidMode::Off {
+            // eq 14's window: every step's slices (nothing when the scene keeps none)
+            let f = &self.state.field;
+            self.state.phi_window.add(&self.state.dem.p, f.base, f.dz);
+        }
         if update {
             if fluid == FluidMode::Off {
                 self.check()?;

@@ -17,6 +17,9 @@ pub struct Workspace {
     /// zeros on the column's faces: the shear stress of a run without column, the Re_p of
     /// a hindrance that does not see it
     pub(crate) zero_faces: Vec<f64>,
+    /// the modified diagonal of eq 17's implicit diffusion of phi, one per cell
+    /// ([`crate::lagrangian::coupling::smoothing::diffuse`])
+    pub(crate) diffusion: Vec<f64>,
     /// the pool of `solver.lagrangian.threads`, `None` for the caller's
     pub(crate) pool: Option<rayon::ThreadPool>,
     /// wall time per stage of the step
@@ -26,7 +29,13 @@ pub struct Workspace {
 impl Workspace {
     /// Scratch for `n` particles and `cells` fluid cells.
     pub(crate) fn new(n: usize, cells: usize, pool: Option<rayon::ThreadPool>) -> Self {
-        Self { seen: vec![0.0; n], zero_faces: vec![0.0; cells + 1], pool, stages: Stages::new(&super::STAGES) }
+        Self {
+            seen: vec![0.0; n],
+            zero_faces: vec![0.0; cells + 1],
+            diffusion: vec![0.0; cells],
+            pool,
+            stages: Stages::new(&super::STAGES),
+        }
     }
 
     /// Scratch sized again for a column of `cells` cells (after the column was fitted to
@@ -34,6 +43,7 @@ impl Workspace {
     pub(crate) fn resize(&mut self, cells: usize) {
         self.zero_faces.clear();
         self.zero_faces.resize(cells + 1, 0.0);
+        self.diffusion.resize(cells, 0.0);
     }
 }
 
