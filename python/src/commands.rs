@@ -46,6 +46,8 @@ pub fn check<'py>(
 /// outputs are written and the exception the signal handler raised is returned under
 /// `interrupt`, for the caller to raise.
 #[pyfunction]
+// the arguments are Python's keyword arguments of `saltus.run`, one per option of `saltus run`
+#[allow(clippy::too_many_arguments)]
 #[pyo3(signature = (scene, set=None, out=None, quiet=true, restart=None, closures=None, warm_start=None))]
 pub fn run<'py>(
     py: Python<'py>,
