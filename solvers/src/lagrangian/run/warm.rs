@@ -22,7 +22,7 @@
 //! material, the contact law and time step, the lateral cell, the walls and the bottom,
 //! and where the free surface stands).
 //!
-//! A start from profiles ([`Lagrangian::start_from_profiles`]): the grains are this
+//! A start from profiles (`Lagrangian::start_from_profiles`): the grains are this
 //! scene's own, deposited as from rest; at the end of the deposition the fluid column
 //! takes the profiles' u_f and every mobile grain the profiles' u_p at its centre, the
 //! profiles' bed surface put on the deposit's (each the highest level at half the largest
