@@ -145,6 +145,18 @@ pub(crate) fn save(state: &State, out: &mut Vec<u8>) -> Result<(), String> {
     options().serialize_into(out, &state.phi_window).map_err(fail)
 }
 
+/// The next part `save` appended after the state, `None` where the bytes end.
+fn segment<T: serde::de::DeserializeOwned>(rest: &mut &[u8], what: &str) -> Result<Option<T>, String> {
+    if rest.is_empty() {
+        return Ok(None);
+    }
+    options()
+        .with_limit(rest.len() as u64)
+        .deserialize_from(rest)
+        .map(Some)
+        .map_err(|e| format!("cannot decode the DEM state's {what}: {e}"))
+}
+
 /// The state `save` wrote, after checking that its sizes fit together: a state that does
 /// not is refused, never indexed.
 pub(crate) fn decode(bytes: &[u8]) -> Result<State, String> {
@@ -153,25 +165,16 @@ pub(crate) fn decode(bytes: &[u8]) -> Result<State, String> {
         .with_limit(bytes.len() as u64)
         .deserialize_from(&mut rest)
         .map_err(|e| format!("cannot decode the DEM state: {e}"))?;
-    // without the series (a checkpoint written before it was kept) the window starts afresh
-    if !rest.is_empty() {
-        s.truncation = options()
-            .with_limit(rest.len() as u64)
-            .deserialize_from(&mut rest)
-            .map_err(|e| format!("cannot decode the DEM state's transport-rate series: {e}"))?;
+    // each later part is absent from a checkpoint written before it was kept: the series
+    // then starts afresh, no profiles wait, no window of eq 14 is open
+    if let Some(t) = segment(&mut rest, "transport-rate series")? {
+        s.truncation = t;
     }
-    if !rest.is_empty() {
-        s.start = options()
-            .with_limit(rest.len() as u64)
-            .deserialize_from(&mut rest)
-            .map_err(|e| format!("cannot decode the DEM state's starting profiles: {e}"))?;
+    if let Some(p) = segment(&mut rest, "starting profiles")? {
+        s.start = p;
     }
-    // the window of eq 14's time mean, when the scene keeps one
-    if !rest.is_empty() {
-        s.phi_window = options()
-            .with_limit(rest.len() as u64)
-            .deserialize(rest)
-            .map_err(|e| format!("cannot decode the DEM state's volume-fraction window: {e}"))?;
+    if let Some(w) = segment(&mut rest, "volume-fraction window")? {
+        s.phi_window = w;
     }
     if !s.fits() {
         return Err(format!(
