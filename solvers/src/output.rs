@@ -184,6 +184,11 @@ pub struct Summary {
     /// Geweke's z between the window's first 10 % and last 50 % (level within +-2)
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub qs_window_geweke_z: Option<f64>,
+    /// the statistical inefficiency (twice the integrated correlation time, s of flow)
+    /// that error is taken with: the window's own or, where larger, the developed state's
+    /// a warm start came from
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub qs_window_inefficiency_s: Option<f64>,
     /// DEM runs: neighbour-list builds of the whole run, the deposition's included (per
     /// step: over `total_steps`)
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -123,6 +123,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
         qs_window: window.and_then(|w| finite(w.mean)),
         qs_window_stderr: window.and_then(|w| w.stderr).and_then(finite),
         qs_window_geweke_z: window.and_then(|w| w.geweke_z).and_then(finite),
+        qs_window_inefficiency_s: window.filter(|w| w.stderr.is_some()).and_then(|w| w.inefficiency_s).and_then(finite),
         neighbour_builds: Some(m.dem().list().builds),
         timing: None,
     };
@@ -212,9 +213,12 @@ fn window_sentence(m: &Lagrangian<'_>, fluid: bool, window: Option<Window>) -> S
     match window {
         None => format!("averaging window (MSER-5 on the transport rate): none yet, the rate has not levelled{rule}"),
         Some(w) => {
+            let floor = m.truncation().prior().map_or_else(String::new, |p| {
+                format!(", the developed state's statistical inefficiency {p:.3} s as its floor")
+            });
             let error = match (w.stderr, w.relative_error()) {
-                (Some(e), Some(r)) => format!(" +- {e:.4e} (relative {r:.2e})"),
-                _ => " (no standard error: too few blocks)".into(),
+                (Some(e), Some(r)) => format!(" +- {e:.4e} (relative {r:.2e}{floor})"),
+                _ => format!(" (no standard error: too few blocks{floor})"),
             };
             let level = w.geweke_z.map_or_else(
                 || "level: not tested (too few blocks)".to_string(),

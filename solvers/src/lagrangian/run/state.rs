@@ -131,18 +131,16 @@ fn options() -> impl bincode::Options {
 }
 
 /// Append `state` to `out`, then its batched transport rate (the averaging window's
-/// series) and the profiles the flow is to start from, which a checkpoint of an earlier
-/// program lacks.
+/// series), the profiles the flow is to start from, eq 14's window and the series' prior
+/// statistical inefficiency, which a checkpoint of an earlier program lacks.
 pub(crate) fn save(state: &State, out: &mut Vec<u8>) -> Result<(), String> {
     let fail = |e: bincode::Error| format!("cannot encode the DEM state: {e}");
     options().serialize_into(&mut *out, state).map_err(fail)?;
     options().serialize_into(&mut *out, &state.truncation).map_err(fail)?;
     options().serialize_into(&mut *out, &state.start).map_err(fail)?;
-    if state.phi_window.vol.is_empty() {
-        // a scene without eq 14's time mean writes no window
-        return Ok(());
-    }
-    options().serialize_into(out, &state.phi_window).map_err(fail)
+    // a scene without eq 14's time mean writes an empty window
+    options().serialize_into(&mut *out, &state.phi_window).map_err(fail)?;
+    options().serialize_into(out, &state.truncation.prior()).map_err(fail)
 }
 
 /// The next part `save` appended after the state, `None` where the bytes end.
@@ -175,6 +173,9 @@ pub(crate) fn decode(bytes: &[u8]) -> Result<State, String> {
     }
     if let Some(w) = segment(&mut rest, "volume-fraction window")? {
         s.phi_window = w;
+    }
+    if let Some(prior) = segment(&mut rest, "prior statistical inefficiency")? {
+        s.truncation.set_prior(prior);
     }
     if !s.fits() {
         return Err(format!(

@@ -7,7 +7,9 @@
 //! bottom (the grains lie on them); and the fluid column (velocity, eddy viscosity, k and
 //! omega) and the field the grains see when the checkpoint's scene has this one's
 //! forcing and column ([`FLUID_KEYS`]) and the column the same cells (a developed state of
-//! the same case starts developed). Rebuilt from this scene: the body force, the fluid
+//! the same case starts developed), with the statistical inefficiency of the parent's
+//! averaging window as a floor under this run's error
+//! (`crate::lagrangian::stats::truncation`). Rebuilt from this scene: the body force, the fluid
 //! column otherwise (cells, depth, at rest; with `surface = "deposit"` its free surface
 //! `water_depth` above the surface the carried deposit had at rest, as the parent's
 //! deposition measured it and every warm start since carried it),
@@ -161,6 +163,9 @@ impl Lagrangian<'_> {
             self.state.field = parent.field;
             self.state.field.refresh();
             self.state.field.set_bed_threshold(self.params.fluctuation.and_then(|f| f.above_bed()));
+            // a developed state of the same case: its longer window knows the correlation
+            // time of qs(t) better than this run's first seconds do
+            self.state.truncation.set_prior(parent.truncation.inefficiency_s());
         }
         if self.params.cfg.settings.numerics.fluid != FluidMode::Off {
             // the first drag and the first row of the time series see the carried bed
