@@ -17,19 +17,19 @@ impl Eulerian<'_> {
     /// Top value of the fluid velocity in the shear rate: the lid's, or that of a
     /// stress-free top ([`crate::column::ColumnOperator::stress_free_shear_top`]).
     pub(super) fn fluid_top(&self, u: &[f64]) -> f64 {
-        match self.cfg.domain.top {
-            Top::Lid => self.cfg.domain.lid_velocity,
-            _ => self.op.stress_free_shear_top(u),
+        match self.params.cfg.domain.top {
+            Top::Lid => self.params.cfg.domain.lid_velocity,
+            _ => self.params.op.stress_free_shear_top(u),
         }
     }
 
     /// Shear rates at cells and faces of the current u_f and u_p.
     pub(super) fn shear_rates(&mut self) {
-        let top_f = self.fluid_top(&self.s.uf);
-        let top_p = self.op.stress_free_shear_top(&self.s.up);
-        self.op.shear_rate(&self.s.uf, top_f, &mut self.co.gamma_f);
-        self.op.shear_rate(&self.s.up, top_p, &mut self.co.gamma_p);
-        self.op.face_gradient(&self.s.up, &mut self.co.face_gamma);
+        let top_f = self.fluid_top(&self.state.uf);
+        let top_p = self.params.op.stress_free_shear_top(&self.state.up);
+        self.params.op.shear_rate(&self.state.uf, top_f, &mut self.work.co.gamma_f);
+        self.params.op.shear_rate(&self.state.up, top_p, &mut self.work.co.gamma_p);
+        self.params.op.face_gradient(&self.state.up, &mut self.work.co.face_gamma);
     }
 
     /// Every coefficient of the step from the current state; the eddy viscosity (state,
@@ -45,32 +45,32 @@ impl Eulerian<'_> {
     pub(super) fn evaluate_with(&mut self, update_eddy: bool) -> Result<(), Breakdown> {
         self.shear_rates();
         self.evaluate_drag();
-        let c = self.c;
-        self.m.viscosity.ratio_batch(&self.s.phi, &mut self.co.visc_ratio);
-        let kw_fields = self.s.kw.as_ref().map(|kw| kw.col.fields());
+        let c = self.params.c;
+        self.params.m.viscosity.ratio_batch(&self.state.phi, &mut self.work.co.visc_ratio);
+        let kw_fields = self.state.kw.as_ref().map(|kw| kw.col.fields());
         let transported: &[&[f64]] = kw_fields.as_ref().map_or(&[], |f| f.as_slice());
         let col = ColumnView {
-            z: self.op.grid().centres(),
-            dz: self.op.grid().dz(),
-            phi: &self.s.phi,
-            dudz: &self.co.gamma_f,
+            z: self.params.op.grid().centres(),
+            dz: self.params.op.grid().dz(),
+            phi: &self.state.phi,
+            dudz: &self.work.co.gamma_f,
             diameter: c.d,
             nu_f: c.nu_f,
             transported,
         };
-        let first = self.s.steps == 0;
+        let first = self.state.steps == 0;
         if update_eddy {
-            if let Err(i) = self.s.eddy.evaluate(self.m.turbulence, &col) {
+            if let Err(i) = self.state.eddy.evaluate(self.params.m.turbulence, &col) {
                 return Err(self.breakdown(i, "nu_t", f64::NAN, "eddy viscosity not finite or negative".into()));
             }
-            self.s.eddy.relax(first);
+            self.state.eddy.relax(first);
         }
-        let nu_t = self.s.eddy.values();
+        let nu_t = self.state.eddy.values();
         for (i, &nt) in nu_t.iter().enumerate() {
-            let eps = 1.0 - self.s.phi[i].max(0.0);
-            self.co.fluid_k[i] = eps * (c.nu_f * self.co.visc_ratio[i] + nt);
+            let eps = 1.0 - self.state.phi[i].max(0.0);
+            self.work.co.fluid_k[i] = eps * (c.nu_f * self.work.co.visc_ratio[i] + nt);
         }
-        self.op.conductances(c.rho_f, &self.co.fluid_k, &mut self.co.fluid_cond);
+        self.params.op.conductances(c.rho_f, &self.work.co.fluid_k, &mut self.work.co.fluid_cond);
         self.evaluate_drift();
         self.evaluate_stress();
         Ok(())
@@ -80,32 +80,32 @@ impl Eulerian<'_> {
     /// wall-normal), with the tangent of the streamwise drag from one batch difference.
     fn evaluate_drag(&mut self) {
         let n = self.len();
-        let c = self.c;
-        let sc = &mut self.sc;
+        let c = self.params.c;
+        let sc = &mut self.work.sc;
         for i in 0..n {
-            let phi = self.s.phi[i].clamp(0.0, 1.0 - 1e-12);
+            let phi = self.state.phi[i].clamp(0.0, 1.0 - 1e-12);
             // the slip of eq 4.3, u_f - u_p + u_d: the particle flux less its drift part
             let f =
-                0.5 * (self.s.flux[i] + self.s.flux[i + 1]) - 0.5 * (self.s.drift_flux[i] + self.s.drift_flux[i + 1]);
-            let wp = if phi > self.slip_phi { f / phi } else { 0.0 };
-            let slip = crate::inputs::mean_slip(self.s.uf[i], self.s.up[i], wp, phi);
+                0.5 * (self.state.flux[i] + self.state.flux[i + 1]) - 0.5 * (self.state.drift_flux[i] + self.state.drift_flux[i + 1]);
+            let wp = if phi > self.params.slip_phi { f / phi } else { 0.0 };
+            let slip = crate::inputs::mean_slip(self.state.uf[i], self.state.up[i], wp, phi);
             sc.phi_c[i] = phi;
             sc.work[i] = slip;
             sc.re[i] = slip * c.d / c.nu_f;
             sc.re2[i] = sc.re[i] * (1.0 + DRE);
         }
-        self.kernel.evaluate(&sc.phi_c, &sc.re, &mut sc.drag);
-        self.kernel.evaluate_at_reynolds(&sc.drag, &sc.phi_c, &sc.re2, &mut sc.drag2);
+        self.params.kernel.evaluate(&sc.phi_c, &sc.re, &mut sc.drag);
+        self.params.kernel.evaluate_at_reynolds(&sc.drag, &sc.phi_c, &sc.re2, &mut sc.drag2);
         let stokes = 0.75 * c.rho_f * c.nu_f / (c.d * c.d);
-        let cd_inf = self.m.drag.cd_inf();
-        let co = &mut self.co;
+        let cd_inf = self.params.m.drag.cd_inf();
+        let co = &mut self.work.co;
         for i in 0..n {
             let phi = sc.phi_c[i];
             let eps = 1.0 - phi;
             let re = sc.re[i];
             let (re_h, cdre, fh) = (sc.drag.re_star[i], sc.drag.cd_re[i], sc.drag.factor[i]);
             // C_D(Re*) |u_r| = cd_re(Re*) nu / d / c(phi): finite as Re -> 0
-            let conv = 1.0 / self.kernel.reynolds_ratio(phi);
+            let conv = 1.0 / self.params.kernel.reynolds_ratio(phi);
             // C = phi eps K / phi (kg m^-3 s^-1): beta = phi C, K = C / eps
             let cc = stokes * fh * cdre * conv;
             // d ln C / d ln Re for the Newton linearisation of the streamwise drag: a Picard
@@ -116,7 +116,7 @@ impl Eulerian<'_> {
             } else {
                 0.0
             };
-            let ux = self.s.uf[i] - self.s.up[i];
+            let ux = self.state.uf[i] - self.state.up[i];
             let slip = sc.work[i];
             // the ratio before the square: ux^2 and slip^2 underflow to 0 (0/0) for a slip
             // below 1e-154 m/s, as the first implicit step of a lid-driven column leaves
@@ -145,19 +145,19 @@ impl Eulerian<'_> {
     /// that no eddy diffusivity of a turbulence closure (k-omega's start-up puts
     /// nu_t = 0.15 m^2/s into a packed bed) can dissolve a packed bed.
     fn evaluate_drift(&mut self) {
-        let Some(fl) = self.m.fluctuation else { return };
-        let g = self.op.grid();
-        let bed = inputs::bed_surface(g.centres(), &self.s.phi, self.cfg.domain.bed_height);
-        let scales = inputs::flow_scales(g.centres(), g.dz(), &self.s.uf, g.height(), bed);
-        let nu_t = self.s.eddy.values();
+        let Some(fl) = self.params.m.fluctuation else { return };
+        let g = self.params.op.grid();
+        let bed = inputs::bed_surface(g.centres(), &self.state.phi, self.params.cfg.domain.bed_height);
+        let scales = inputs::flow_scales(g.centres(), g.dz(), &self.state.uf, g.height(), bed);
+        let nu_t = self.state.eddy.values();
         for (i, &nt) in nu_t.iter().enumerate() {
-            let (k, omega) = self.s.kw.as_ref().map_or((0.0, 0.0), |kw| (kw.col.k[i], kw.col.omega[i]));
-            let reynolds_stress = inputs::reynolds_stress(nt, self.co.gamma_f[i]);
-            self.sc.turbulence[i] = TurbulencePoint { k, omega, nu_t: nt, reynolds_stress };
+            let (k, omega) = self.state.kw.as_ref().map_or((0.0, 0.0), |kw| (kw.col.k[i], kw.col.omega[i]));
+            let reynolds_stress = inputs::reynolds_stress(nt, self.work.co.gamma_f[i]);
+            self.work.sc.turbulence[i] = TurbulencePoint { k, omega, nu_t: nt, reynolds_stress };
         }
-        fl.diffusivity_batch(&self.sc.turbulence, &scales, &mut self.co.drift);
-        let phi_max = self.m.rheology.phi_max();
-        for (d, &phi) in self.co.drift.iter_mut().zip(&self.s.phi) {
+        fl.diffusivity_batch(&self.work.sc.turbulence, &scales, &mut self.work.co.drift);
+        let phi_max = self.params.m.rheology.phi_max();
+        for (d, &phi) in self.work.co.drift.iter_mut().zip(&self.state.phi) {
             *d = d.max(0.0) * (1.0 - phi / phi_max).clamp(0.0, 1.0);
         }
     }

@@ -10,19 +10,19 @@ impl Eulerian<'_> {
     /// Backward-Euler (or, with `bdf2`, BDF2) step of k and omega with the shear rate of
     /// the new fluid velocity; nothing without such a closure.
     pub(super) fn solve_two_equation(&mut self, dt: f64, bdf2: Option<Bdf2>) -> Result<(), Breakdown> {
-        let Some(model) = self.m.turbulence.as_two_equation() else { return Ok(()) };
-        let top = self.fluid_top(&self.s.uf);
-        self.op.shear_rate(&self.s.uf, top, &mut self.sc.shear);
-        let Some(kw) = self.s.kw.as_mut() else { return Ok(()) };
-        for ((d, &k), &phi) in kw.drag.iter_mut().zip(&self.co.k_drag).zip(&self.s.phi) {
+        let Some(model) = self.params.m.turbulence.as_two_equation() else { return Ok(()) };
+        let top = self.fluid_top(&self.state.uf);
+        self.params.op.shear_rate(&self.state.uf, top, &mut self.work.sc.shear);
+        let Some(kw) = self.state.kw.as_mut() else { return Ok(()) };
+        for ((d, &k), &phi) in kw.drag.iter_mut().zip(&self.work.co.k_drag).zip(&self.state.phi) {
             // beta of Cheng eq 23 = phi eps K / phi
             *d = k * (1.0 - phi.clamp(0.0, 1.0));
         }
-        let (phi, uf, shear) = (&self.s.phi, &self.s.uf, &self.sc.shear);
-        let p = &self.stepping.previous;
+        let (phi, uf, shear) = (&self.state.phi, &self.state.uf, &self.work.sc.shear);
+        let p = &self.state.stepping.previous;
         let before = bdf2.map(|weights| Before { weights, k: &p.k, omega: &p.omega });
         let result =
-            kw.advance(model, &self.op, &self.k_omega_physics, phi, uf, shear, self.co.visc_ratio[0], dt, before);
+            kw.advance(model, &self.params.op, &self.params.k_omega_physics, phi, uf, shear, self.work.co.visc_ratio[0], dt, before);
         result.map_err(|f| self.breakdown(f.cell, f.field, f.value, f.reason.into()))
     }
 }

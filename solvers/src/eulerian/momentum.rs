@@ -38,12 +38,12 @@ impl Eulerian<'_> {
     /// step (the state then holds their extrapolation, [`Eulerian::extrapolate`]).
     pub(super) fn solve_momentum(&mut self, dt: f64, grad: f64, bdf2: Option<Bdf2>) -> Result<(), Breakdown> {
         let n = self.len();
-        let c = self.c;
+        let c = self.params.c;
         let inv_dt = 1.0 / dt;
-        let dz = self.op.grid().dz();
-        let (s, co) = (&self.s, &self.co);
-        let prev = &self.stepping.previous;
-        let bl = &mut self.sc.block;
+        let dz = self.params.op.grid().dz();
+        let (s, co) = (&self.state, &self.work.co);
+        let prev = &self.state.stepping.previous;
+        let bl = &mut self.work.sc.block;
         for i in 0..n {
             let phi = s.phi[i].max(0.0);
             let eps = 1.0 - phi;
@@ -59,8 +59,8 @@ impl Eulerian<'_> {
             if let Some(b) = bdf2 {
                 // the state holds the extrapolation about which the drag is linearised;
                 // the old values are the two last accepted states
-                old_f = b.old(self.saved.uf()[i], prev.uf[i]);
-                old_p = b.old(self.saved.up()[i], prev.up[i]);
+                old_f = b.old(self.work.saved.uf()[i], prev.uf[i]);
+                old_p = b.old(self.work.saved.up()[i], prev.up[i]);
                 mf *= b.scale();
                 mp *= b.scale();
             }
@@ -74,28 +74,28 @@ impl Eulerian<'_> {
                     - (tangent - 1.0) * bp * slip,
             ];
         }
-        self.op.add_diffusion(&co.fluid_cond, &mut Phase { block: bl, c: 0 });
-        self.op.add_diffusion(&co.part_cond, &mut Phase { block: bl, c: 1 });
+        self.params.op.add_diffusion(&co.fluid_cond, &mut Phase { block: bl, c: 0 });
+        self.params.op.add_diffusion(&co.part_cond, &mut Phase { block: bl, c: 1 });
         // bottom no-slip for both phases: stress = k du/dz at the wall
-        self.op.add_wall(c.rho_f * co.fluid_k[0], &mut Phase { block: bl, c: 0 });
-        self.op.add_wall(co.eta_face[0], &mut Phase { block: bl, c: 1 });
-        if self.cfg.domain.top == Top::Lid {
+        self.params.op.add_wall(c.rho_f * co.fluid_k[0], &mut Phase { block: bl, c: 0 });
+        self.params.op.add_wall(co.eta_face[0], &mut Phase { block: bl, c: 1 });
+        if self.params.cfg.domain.top == Top::Lid {
             let w = c.rho_f * co.fluid_k[n - 1];
-            self.op.add_lid(w, self.cfg.domain.lid_velocity, &mut Phase { block: bl, c: 0 });
+            self.params.op.add_lid(w, self.params.cfg.domain.lid_velocity, &mut Phase { block: bl, c: 0 });
         }
-        if let Err(row) = bl.solve(&mut self.sc.xb) {
+        if let Err(row) = bl.solve(&mut self.work.sc.xb) {
             return Err(self.breakdown(row, "u_f", f64::NAN, "singular momentum system".into()));
         }
         for i in 0..n {
-            let [a, b] = self.sc.xb[i];
+            let [a, b] = self.work.sc.xb[i];
             if !a.is_finite() {
                 return Err(self.breakdown(i, "u_f", a, "not finite after the momentum solve".into()));
             }
             if !b.is_finite() {
                 return Err(self.breakdown(i, "u_p", b, "not finite after the momentum solve".into()));
             }
-            self.s.uf[i] = a;
-            self.s.up[i] = b;
+            self.state.uf[i] = a;
+            self.state.up[i] = b;
         }
         Ok(())
     }

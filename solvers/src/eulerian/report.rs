@@ -36,7 +36,7 @@ impl Eulerian<'_> {
     /// velocity, the control number of the granular closure.
     pub fn derived(&self) -> Derived {
         let n = self.len();
-        let (s, co) = (&self.s, &self.co);
+        let (s, co) = (&self.state, &self.work.co);
         let nu_t = s.eddy.values();
         let mut out = Derived::default();
         for i in 0..nu_t.len().min(n) {
@@ -46,7 +46,7 @@ impl Eulerian<'_> {
             out.p_p.push(p);
             let f = 0.5 * (s.flux[i] + s.flux[i + 1]);
             out.w_p.push(if s.phi[i] > 1e-6 { f / s.phi[i] } else { 0.0 });
-            let x = match self.m.rheology {
+            let x = match self.params.m.rheology {
                 Rheology::Local { model, .. } => model.control_number(&self.local_state(co.gamma_p[i], p)),
                 Rheology::Kinetic { .. } => self.local_state(co.gamma_p[i], co.pres[i].p).inertial_number(),
             };
@@ -67,13 +67,13 @@ impl Eulerian<'_> {
     /// (J_int = -c_J beta T, eqs 2.25 / 3.13). Undefined values (p_p = 0) are NaN.
     fn push_granular_fields(&self, p: &mut Profiles, p_p: &[f64]) {
         let n = self.len();
-        let (c, co) = (self.c, &self.co);
+        let (c, co) = (self.params.c, &self.work.co);
         let gamma = &co.gamma_p[..n];
         let state = |i: usize| self.local_state(gamma[i], p_p[i]);
         let defined = |x: f64| if x.is_finite() { x } else { f64::NAN };
         let per_cell = |f: &dyn Fn(usize) -> f64| (0..n).map(f).map(defined).collect::<Vec<_>>();
         p.push("gamma_dot", gamma.to_vec());
-        let mu_eff = match self.m.rheology {
+        let mu_eff = match self.params.m.rheology {
             Rheology::Local { model, .. } => {
                 p.push("inertial_number", per_cell(&|i| state(i).inertial_number()));
                 per_cell(&|i| if p_p[i] > 0.0 { model.friction(model.control_number(&state(i))) } else { f64::NAN })
@@ -81,7 +81,7 @@ impl Eulerian<'_> {
             Rheology::Kinetic { model: kt, .. } => {
                 let mu_s = kt.static_friction();
                 per_cell(&|i| {
-                    let st = self.s.temp[i].max(0.0).sqrt();
+                    let st = self.state.temp[i].max(0.0).sqrt();
                     let g = gamma[i];
                     let coulomb = if g == 0.0 { 0.0 } else { mu_s * co.pres[i].p_el * g.signum() };
                     (kt.shear_viscosity(&co.coef[i], c.rho_p, c.d, st) * g + coulomb) / p_p[i]
@@ -91,12 +91,12 @@ impl Eulerian<'_> {
         p.push("viscous_number", per_cell(&|i| state(i).viscous_number()));
         p.push("mu_eff", mu_eff);
         p.push("beta", co.beta[..n].to_vec());
-        let Rheology::Kinetic { model: kt, .. } = self.m.rheology else { return };
-        let temp = &self.s.temp[..n];
+        let Rheology::Kinetic { model: kt, .. } = self.params.m.rheology else { return };
+        let temp = &self.state.temp[..n];
         let dtdz = output::profile_gradient(self.z(), temp);
         p.push("heat_flux", per_cell(&|i| -co.kappa[i] * dtdz[i]));
         p.push("dissipation", per_cell(&|i| kt.dissipation(&co.coef[i], c.rho_p, c.d, temp[i].max(0.0))));
-        let cd_inf = self.m.drag.cd_inf();
+        let cd_inf = self.params.m.drag.cd_inf();
         p.push(
             "drag_dissipation",
             per_cell(&|i| {
@@ -108,7 +108,7 @@ impl Eulerian<'_> {
 
     /// Fluid shear stress, viscous + turbulent, of cell `i` (Pa).
     fn fluid_shear_stress(&self, i: usize) -> f64 {
-        let (s, co, c) = (&self.s, &self.co, self.c);
+        let (s, co, c) = (&self.state, &self.work.co, self.params.c);
         let eps = 1.0 - s.phi[i].max(0.0);
         c.rho_f * eps * (c.nu_f * co.visc_ratio[i] + s.eddy.values()[i]) * co.gamma_f[i]
     }
@@ -116,12 +116,12 @@ impl Eulerian<'_> {
     /// The state as a row of the time series: qs, the largest fluid shear stress and the
     /// 1 % level of the transport as the report computes them, and the steady residual.
     pub(super) fn sample_row(&self) -> Sample {
-        let scene = self.scene;
+        let scene = self.params.scene;
         let scales = output::TransportScales::new(
             scene,
             scene.particles.density,
             scene.particles.diameter,
-            self.cfg.domain.water_depth,
+            self.params.cfg.domain.water_depth,
         );
         let (phi, up, dz, faces) = (self.phi(), self.u_p(), self.dz(), self.faces());
         let q = |i: usize| phi[i].max(0.0) * up[i];
@@ -143,9 +143,9 @@ impl Eulerian<'_> {
     /// Profiles, summary and paragraph of the run as it is now, ended by `ending` after
     /// `wall` seconds.
     pub(super) fn run_report(&self, ending: &Ending, wall: f64) -> RunReport {
-        let scene = self.scene;
+        let scene = self.params.scene;
         let derived = self.derived();
-        let phi_max = self.m.rheology.phi_max();
+        let phi_max = self.params.m.rheology.phi_max();
         let phi: Vec<f64> = self.phi().iter().map(|p| p.clamp(0.0, phi_max)).collect();
         let mut p = Profiles::default();
         p.push("z", self.z().to_vec());
@@ -175,7 +175,7 @@ impl Eulerian<'_> {
             scene,
             scene.particles.density,
             scene.particles.diameter,
-            self.cfg.domain.water_depth,
+            self.params.cfg.domain.water_depth,
         );
         let (z1, z99) = output::flux_levels(self.faces(), &q, 0.01, 0.99);
         let summary = Summary {
@@ -206,8 +206,8 @@ impl Eulerian<'_> {
             particles: None,
             particle_steps_per_s: None,
             shields_turbulent: None,
-            rouse_number: self.m.fluctuation.and_then(|_| {
-                let d = &self.cfg.domain;
+            rouse_number: self.params.m.fluctuation.and_then(|_| {
+                let d = &self.params.cfg.domain;
                 crate::rouse::rouse_number(self.z(), self.dz(), &phi, d.bed_height, d.water_depth)
             }),
             ..Summary::default()

@@ -9,7 +9,7 @@ use saltus_core::{DragLaw, DriftForm, EffectiveViscosity, Fluctuation, Turbulenc
 
 use super::config::{Config, Top};
 use super::rheology::{Elastic, Rheology};
-use super::state::{Saved, State};
+use super::state::{Previous, Saved, State, Stepping};
 use super::workspace::{Coefficients, Scratch};
 use crate::column::turbulence::{friction_velocity, EddyViscosity, KOmegaPhysics, KOmegaRun};
 use crate::column::{ColumnOperator, Grid};
@@ -47,63 +47,47 @@ pub(super) struct Models<'a> {
     pub rheology: Rheology<'a>,
 }
 
-/// Adaptive stepping between accepted steps.
-pub(super) struct Stepping {
-    /// next time step (s)
-    pub dt: f64,
-    /// consecutive steps under the steady tolerance
-    pub calm: usize,
-    /// time-accurate stepping: the fields before the last accepted step and its
-    /// length (s), 0 before the first (that step is then backward Euler)
-    pub previous: Previous,
-}
-
-/// The transported fields one accepted step back, for BDF2.
-#[derive(Default)]
-pub(super) struct Previous {
-    pub uf: Vec<f64>,
-    pub up: Vec<f64>,
-    pub phi: Vec<f64>,
-    pub temp: Vec<f64>,
-    /// k and omega, empty without a two-equation closure
-    pub k: Vec<f64>,
-    pub omega: Vec<f64>,
-    /// the particle flux and its drift part at the faces
-    pub flux: Vec<f64>,
-    pub drift_flux: Vec<f64>,
-    /// length of the step that followed them (s); 0: none yet
-    pub dt: f64,
-}
-
-/// The Eulerian two-fluid column of Chassagne et al. 2023 section 2.1; see the module
-/// documentation of [`crate::eulerian`] for the equations and the discretisation.
-pub struct Eulerian<'a> {
-    pub(super) scene: &'a Scene,
-    pub(super) cfg: Config,
-    pub(super) c: Constants,
-    pub(super) m: Models<'a>,
-    pub(super) kernel: DragKernel<'a>,
-    pub(super) kinetic: bool,
-    pub(super) op: ColumnOperator,
-    pub(super) k_omega_physics: KOmegaPhysics,
-    /// the solution
-    pub(super) s: State,
-    /// the state a rejected step restores
-    pub(super) saved: Saved,
-    /// coefficients of the current state (kept current after every accepted step)
-    pub(super) co: Coefficients,
-    pub(super) sc: Scratch,
-    pub(super) stepping: Stepping,
-    /// wall time of the stages of the steps ([`super::STAGES`])
-    pub(super) stages: crate::run::Stages,
+/// What a run of the column reads and never changes: the scene, its settings, the
+/// constants, the closures and the grid operator.
+pub(super) struct Params<'a> {
+    pub scene: &'a Scene,
+    pub cfg: Config,
+    pub c: Constants,
+    pub m: Models<'a>,
+    pub kernel: DragKernel<'a>,
+    pub kinetic: bool,
+    pub op: ColumnOperator,
+    pub k_omega_physics: KOmegaPhysics,
     /// form of the drift flux of the fluctuation closure (gradient without one)
-    pub(super) drift_form: DriftForm,
+    pub drift_form: DriftForm,
     /// volume fraction above which the wall-normal slip enters the drag: 1e-6 without a
     /// fluctuation closure; with one, any positive phi, because a suspension profile spans
     /// many decades (a Rouse profile over a smooth wall falls below 1e-15) and its grains
     /// settle at the terminal velocity of the drag law, not at the Stokes velocity that a
     /// zero slip would give
-    pub(super) slip_phi: f64,
+    pub slip_phi: f64,
+}
+
+/// What a step recomputes from the state or keeps only within itself: the copy a
+/// rejected step restores, the coefficients of the current state, the scratch of the
+/// solves and the stages' wall time.
+pub(super) struct Workspace {
+    /// the state a rejected step restores
+    pub saved: Saved,
+    /// coefficients of the current state (kept current after every accepted step)
+    pub co: Coefficients,
+    pub sc: Scratch,
+    /// wall time of the stages of the steps ([`super::STAGES`])
+    pub stages: crate::run::Stages,
+}
+
+/// The Eulerian two-fluid column of Chassagne et al. 2023 section 2.1; see the module
+/// documentation of [`crate::eulerian`] for the equations and the discretisation.
+pub struct Eulerian<'a> {
+    pub(super) params: Params<'a>,
+    /// the solution and the stepping between accepted steps
+    pub(super) state: State,
+    pub(super) work: Workspace,
 }
 
 impl<'a> Eulerian<'a> {
@@ -218,7 +202,10 @@ impl<'a> Eulerian<'a> {
             gravity_normal: g * cos,
             friction_velocity: u_star,
         };
-        let s = State {
+        let stepping =
+            Stepping { dt: cfg.settings.dt_initial.min(cfg.settings.dt_max), calm: 0, previous: Previous::default() };
+        let state = State {
+            stepping,
             time: 0.0,
             steps: 0,
             rejected: 0,
@@ -233,9 +220,7 @@ impl<'a> Eulerian<'a> {
             kw,
             mass0,
         };
-        let stepping =
-            Stepping { dt: cfg.settings.dt_initial.min(cfg.settings.dt_max), calm: 0, previous: Previous::default() };
-        let mut model = Self {
+        let params = Params {
             scene,
             kernel: DragKernel::new(drag, hindrance),
             c,
@@ -243,120 +228,121 @@ impl<'a> Eulerian<'a> {
             kinetic,
             op,
             k_omega_physics,
-            s,
-            saved: Saved::default(),
-            stages: crate::run::Stages::new(&super::STAGES),
-            co: Coefficients::new(n),
-            sc: Scratch::new(n),
-            stepping,
             drift_form: fluctuation.map_or(DriftForm::Gradient, |f| f.drift_form()),
             slip_phi: if fluctuation.is_some() { f64::MIN_POSITIVE } else { 1e-6 },
             cfg,
         };
+        let work = Workspace {
+            saved: Saved::default(),
+            stages: crate::run::Stages::new(&super::STAGES),
+            co: Coefficients::new(n),
+            sc: Scratch::new(n),
+        };
+        let mut model = Self { params, state, work };
         model.evaluate().map_err(|b| Error::Invalid(format!("{file}: initial state: {b}")))?;
         Ok(model)
     }
 
     /// Number of cells.
     pub fn len(&self) -> usize {
-        self.s.len()
+        self.state.len()
     }
     /// Always false: a column has at least 4 cells.
     pub fn is_empty(&self) -> bool {
-        self.s.phi.is_empty()
+        self.state.phi.is_empty()
     }
     /// The grid operator.
     pub fn operator(&self) -> &ColumnOperator {
-        &self.op
+        &self.params.op
     }
     /// Cell centres (m).
     pub fn z(&self) -> &[f64] {
-        self.op.grid().centres()
+        self.params.op.grid().centres()
     }
     /// Cell height (m).
     pub fn dz(&self) -> &[f64] {
-        self.op.grid().dz()
+        self.params.op.grid().dz()
     }
     /// Faces (m).
     pub fn faces(&self) -> &[f64] {
-        self.op.grid().faces()
+        self.params.op.grid().faces()
     }
     /// Solid volume fraction per cell.
     pub fn phi(&self) -> &[f64] {
-        &self.s.phi
+        &self.state.phi
     }
     /// Fluid streamwise velocity per cell (m/s).
     pub fn u_f(&self) -> &[f64] {
-        &self.s.uf
+        &self.state.uf
     }
     /// Particle streamwise velocity per cell (m/s).
     pub fn u_p(&self) -> &[f64] {
-        &self.s.up
+        &self.state.up
     }
     /// Granular temperature per cell (m^2/s^2); zeros without kinetic theory.
     pub fn temperature(&self) -> &[f64] {
-        &self.s.temp
+        &self.state.temp
     }
     /// Whether the granular temperature equation is solved.
     pub fn is_kinetic(&self) -> bool {
-        self.kinetic
+        self.params.kinetic
     }
     /// Particle volume flux phi w_p through the faces (m/s).
     pub fn flux(&self) -> &[f64] {
-        &self.s.flux
+        &self.state.flux
     }
     /// Eddy viscosity per cell (m^2/s), as relaxed for the current coefficients.
     pub fn eddy_viscosity(&self) -> &[f64] {
-        self.s.eddy.values()
+        self.state.eddy.values()
     }
     /// Turbulent kinetic energy and specific dissipation rate per cell, when the
     /// turbulence closure transports them.
     pub fn k_omega(&self) -> Option<(&[f64], &[f64])> {
-        self.s.kw.as_ref().map(|kw| (kw.col.k.as_slice(), kw.col.omega.as_slice()))
+        self.state.kw.as_ref().map(|kw| (kw.col.k.as_slice(), kw.col.omega.as_slice()))
     }
     /// Simulated time (s).
     pub fn time(&self) -> f64 {
-        self.s.time
+        self.state.time
     }
     /// Accepted steps.
     pub fn steps(&self) -> usize {
-        self.s.steps
+        self.state.steps
     }
     /// Rejected steps.
     pub fn rejected_steps(&self) -> usize {
-        self.s.rejected
+        self.state.rejected
     }
     /// Last steady residual (1/s).
     pub fn residual(&self) -> f64 {
-        self.s.residual
+        self.state.residual
     }
     /// Settings in use.
     pub fn config(&self) -> &Config {
-        &self.cfg
+        &self.params.cfg
     }
     /// Sediment mass per unit bed area over rho_p: sum phi dz (m).
     pub fn sediment_height(&self) -> f64 {
-        self.s.sediment_height(self.dz())
+        self.state.sediment_height(self.dz())
     }
     /// |mass - initial mass| / initial mass (0 for clear fluid).
     pub fn mass_error(&self) -> f64 {
-        if self.s.mass0 > 0.0 {
-            (self.sediment_height() - self.s.mass0).abs() / self.s.mass0
+        if self.state.mass0 > 0.0 {
+            (self.sediment_height() - self.state.mass0).abs() / self.state.mass0
         } else {
             0.0
         }
     }
     /// Set the velocities (tests and restarts); the coefficients follow.
     pub fn set_velocities(&mut self, uf: &[f64], up: &[f64]) -> Result<(), Breakdown> {
-        self.s.uf.copy_from_slice(uf);
-        self.s.up.copy_from_slice(up);
+        self.state.uf.copy_from_slice(uf);
+        self.state.up.copy_from_slice(up);
         self.evaluate()
     }
 
     /// Particle pressure per cell (Pa) at the current state (elastic, kinetic or
     /// dilatancy; without the overburden of a blocked surface face).
     pub fn particle_pressure(&self) -> Vec<f64> {
-        self.co.pres.iter().map(|p| p.p).collect()
+        self.work.co.pres.iter().map(|p| p.p).collect()
     }
 
     pub(super) fn breakdown(&self, cell: usize, field: &'static str, value: f64, reason: String) -> Breakdown {
@@ -364,6 +350,6 @@ impl<'a> Eulerian<'a> {
             Some(&z) => Place::Cell { index: cell, z },
             None => Place::Column,
         };
-        Breakdown { time: self.s.time, place, field: field.into(), value, reason }
+        Breakdown { time: self.state.time, place, field: field.into(), value, reason }
     }
 }

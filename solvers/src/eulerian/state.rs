@@ -35,7 +35,38 @@ pub(super) struct State {
     pub kw: Option<KOmegaRun>,
     /// initial sediment height sum phi dz (m)
     pub mass0: f64,
+    /// the step to take next and the fields one step back
+    pub stepping: Stepping,
 }
+
+/// Adaptive stepping between accepted steps.
+pub(super) struct Stepping {
+    /// next time step (s)
+    pub dt: f64,
+    /// consecutive steps under the steady tolerance
+    pub calm: usize,
+    /// time-accurate stepping: the fields before the last accepted step and its
+    /// length (s), 0 before the first (that step is then backward Euler)
+    pub previous: Previous,
+}
+
+/// The transported fields one accepted step back, for BDF2.
+#[derive(Default)]
+pub(super) struct Previous {
+    pub uf: Vec<f64>,
+    pub up: Vec<f64>,
+    pub phi: Vec<f64>,
+    pub temp: Vec<f64>,
+    /// k and omega, empty without a two-equation closure
+    pub k: Vec<f64>,
+    pub omega: Vec<f64>,
+    /// the particle flux and its drift part at the faces
+    pub flux: Vec<f64>,
+    pub drift_flux: Vec<f64>,
+    /// length of the step that followed them (s); 0: none yet
+    pub dt: f64,
+}
+
 
 /// The fields of [`State`] a rejected step restores (nu_t is a relaxation lag, not
 /// restored: the retry relaxes it once more, as every attempt does).

@@ -24,28 +24,28 @@ impl Eulerian<'_> {
     /// (local), k and omega, and the volume fraction.
     fn attempt(&mut self, dt: f64) -> Result<Instant, Breakdown> {
         let t = Instant::now();
-        self.s.save(&mut self.saved);
-        let grad = self.pressure_gradient(self.s.time + dt);
-        let bdf2 = self.accurate().then_some(self.stepping.previous.dt).filter(|&p| p > 0.0).map(|p| Bdf2::new(dt / p));
+        self.state.save(&mut self.work.saved);
+        let grad = self.pressure_gradient(self.state.time + dt);
+        let bdf2 = self.accurate().then_some(self.state.stepping.previous.dt).filter(|&p| p > 0.0).map(|p| Bdf2::new(dt / p));
         let t = match bdf2 {
             Some(b) => {
                 self.extrapolate(b)?;
-                self.stages.lap(stage::COEFFICIENTS, t)
+                self.work.stages.lap(stage::COEFFICIENTS, t)
             }
             None => t,
         };
         self.solve_momentum(dt, grad, bdf2)?;
-        let t = self.stages.lap(stage::MOMENTUM, t);
-        if self.kinetic {
+        let t = self.work.stages.lap(stage::MOMENTUM, t);
+        if self.params.kinetic {
             self.solve_temperature(dt, bdf2)?;
         } else {
             self.update_local_pressure();
         }
-        let t = self.stages.lap(stage::GRANULAR, t);
+        let t = self.work.stages.lap(stage::GRANULAR, t);
         self.solve_two_equation(dt, bdf2)?;
-        let t = self.stages.lap(stage::TURBULENCE, t);
+        let t = self.work.stages.lap(stage::TURBULENCE, t);
         let r = self.solve_phi(dt, bdf2);
-        let t = self.stages.lap(stage::VOLUME_FRACTION, t);
+        let t = self.work.stages.lap(stage::VOLUME_FRACTION, t);
         r.map(|()| t)
     }
 
@@ -57,9 +57,10 @@ impl Eulerian<'_> {
     /// [`crate::column::bdf2`]). phi is kept in [0, the maximum packing) and T >= 0, k >= 0,
     /// omega > 0: a cell whose extrapolation leaves them keeps its start value.
     fn extrapolate(&mut self, b: Bdf2) -> Result<(), Breakdown> {
-        let phi_max = self.m.rheology.phi_max();
-        let p = &self.stepping.previous;
-        let s = &mut self.s;
+        let phi_max = self.params.m.rheology.phi_max();
+        // the fields one step back, held apart while the state takes the extrapolation
+        let p = std::mem::take(&mut self.state.stepping.previous);
+        let s = &mut self.state;
         for i in 0..s.phi.len() {
             let v = b.extrapolate(s.phi[i], p.phi[i]);
             if (0.0..phi_max).contains(&v) {
@@ -89,8 +90,9 @@ impl Eulerian<'_> {
                 }
             }
         }
+        self.state.stepping.previous = p;
         let r = self.evaluate_with(false);
-        if let Some(kw) = &mut self.s.kw {
+        if let Some(kw) = &mut self.state.kw {
             kw.col.restore();
         }
         r
@@ -100,26 +102,26 @@ impl Eulerian<'_> {
     /// before: one clock read less per step).
     fn coefficients(&mut self, since: Instant) -> Result<(), Breakdown> {
         let r = self.evaluate();
-        self.stages.lap(stage::COEFFICIENTS, since);
+        self.work.stages.lap(stage::COEFFICIENTS, since);
         r
     }
 
     /// The run's own ending at the current state, if any: the steady state, never in
     /// time-accurate stepping (the driver applies the end time and the step cap).
     fn ending(&self) -> Option<Ending> {
-        (!self.accurate() && self.stepping.calm >= self.cfg.settings.steady_steps).then_some(Ending::Steady)
+        (!self.accurate() && self.state.stepping.calm >= self.params.cfg.settings.steady_steps).then_some(Ending::Steady)
     }
 
     /// Whether the momentum is stepped by BDF2 (`solver.eulerian.time_stepping = "accurate"`).
     pub(super) fn accurate(&self) -> bool {
-        self.cfg.settings.time_stepping == TimeStepping::Accurate
+        self.params.cfg.settings.time_stepping == TimeStepping::Accurate
     }
 
     /// The pressure gradient -dp/dx at time `t` (Pa/m): the steady one and the forcing's.
     pub fn pressure_gradient(&self, t: f64) -> f64 {
-        match &self.scene.physics.forcing {
-            Some(f) => self.c.grad + f.gradient(t, self.c.rho_f),
-            None => self.c.grad,
+        match &self.params.scene.physics.forcing {
+            Some(f) => self.params.c.grad + f.gradient(t, self.params.c.rho_f),
+            None => self.params.c.grad,
         }
     }
 
@@ -128,18 +130,18 @@ impl Eulerian<'_> {
         if !self.accurate() {
             return;
         }
-        let p = &mut self.stepping.previous;
+        let p = &mut self.state.stepping.previous;
         let empty: [&[f64]; 2] = [&[], &[]];
-        let [k, omega] = self.s.kw.as_ref().map_or(empty, |kw| [kw.col.saved_k(), kw.col.saved_omega()]);
+        let [k, omega] = self.state.kw.as_ref().map_or(empty, |kw| [kw.col.saved_k(), kw.col.saved_omega()]);
         for (dst, src) in [
-            (&mut p.uf, self.saved.uf()),
-            (&mut p.up, self.saved.up()),
-            (&mut p.phi, self.saved.phi()),
-            (&mut p.temp, self.saved.temp()),
+            (&mut p.uf, self.work.saved.uf()),
+            (&mut p.up, self.work.saved.up()),
+            (&mut p.phi, self.work.saved.phi()),
+            (&mut p.temp, self.work.saved.temp()),
             (&mut p.k, k),
             (&mut p.omega, omega),
-            (&mut p.flux, self.saved.flux()),
-            (&mut p.drift_flux, self.saved.drift_flux()),
+            (&mut p.flux, self.work.saved.flux()),
+            (&mut p.drift_flux, self.work.saved.drift_flux()),
         ] {
             dst.clear();
             dst.extend_from_slice(src);
@@ -154,7 +156,7 @@ impl Stepper for Eulerian<'_> {
     }
 
     fn limits(&self) -> Limits {
-        let s = &self.cfg.settings;
+        let s = &self.params.cfg.settings;
         // the last step is cut to end at end_time, which it meets within rounding
         Limits { end_time: s.end_time, end_tolerance: 1e-12, max_steps: s.max_steps as u64, wall: None }
     }
@@ -172,32 +174,32 @@ impl Stepper for Eulerian<'_> {
         if let Some(e) = self.ending() {
             return Some(e);
         }
-        let s = &self.cfg.settings;
+        let s = &self.params.cfg.settings;
         let (dt_max, dt_min, end_time, tol, max_change, field_change) =
             (s.dt_max, s.dt_min, limits.end_time, s.steady_tolerance, s.max_phi_change, s.target_field_change);
         loop {
-            let dt = self.stepping.dt;
-            let step = dt.min(end_time - self.s.time);
+            let dt = self.state.stepping.dt;
+            let step = dt.min(end_time - self.state.time);
             match self.attempt(step) {
                 Ok(since) => {
                     self.remember(step);
-                    self.s.time += step;
-                    self.s.steps += 1;
+                    self.state.time += step;
+                    self.state.steps += 1;
                     let (rate, grow) =
-                        self.s.rates(&self.saved, step, self.kinetic, max_change, field_change, self.accurate());
-                    self.s.residual = rate;
-                    self.stepping.calm = if rate < tol { self.stepping.calm + 1 } else { 0 };
-                    self.stepping.dt = (dt * grow).min(dt_max);
+                        self.state.rates(&self.work.saved, step, self.params.kinetic, max_change, field_change, self.accurate());
+                    self.state.residual = rate;
+                    self.state.stepping.calm = if rate < tol { self.state.stepping.calm + 1 } else { 0 };
+                    self.state.stepping.dt = (dt * grow).min(dt_max);
                     if let Err(b) = self.coefficients(since) {
                         return Some(Ending::Unstable(b));
                     }
                     return self.ending();
                 }
                 Err(b) => {
-                    self.s.restore(&self.saved);
-                    self.s.rejected += 1;
-                    self.stepping.dt = dt * 0.3;
-                    if self.stepping.dt < dt_min {
+                    self.state.restore(&self.work.saved);
+                    self.state.rejected += 1;
+                    self.state.stepping.dt = dt * 0.3;
+                    if self.state.stepping.dt < dt_min {
                         // the coefficients of the restored state, for the report
                         let _ = self.coefficients(Instant::now());
                         return Some(Ending::Unstable(b));
@@ -213,12 +215,12 @@ impl Stepper for Eulerian<'_> {
     fn progress(&self) -> Progress {
         Progress {
             phase: Phase::Flow,
-            time: self.s.time,
-            end_time: self.cfg.settings.end_time,
-            steps: self.s.steps as u64,
-            total_steps: self.s.steps as u64,
-            dt: self.stepping.dt,
-            residual: self.s.residual.is_finite().then_some(self.s.residual),
+            time: self.state.time,
+            end_time: self.params.cfg.settings.end_time,
+            steps: self.state.steps as u64,
+            total_steps: self.state.steps as u64,
+            dt: self.state.stepping.dt,
+            residual: self.state.residual.is_finite().then_some(self.state.residual),
         }
     }
 
@@ -227,7 +229,7 @@ impl Stepper for Eulerian<'_> {
     }
 
     fn stages(&self) -> Vec<(&'static str, f64)> {
-        self.stages.iter().collect()
+        self.work.stages.iter().collect()
     }
 
     fn sample(&self) -> Sample {

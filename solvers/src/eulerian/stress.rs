@@ -15,21 +15,21 @@ impl Eulerian<'_> {
         LocalState {
             shear_rate: gamma,
             pressure: p,
-            diameter: self.c.d,
-            particle_density: self.c.rho_p,
-            fluid_viscosity: self.c.rho_f * self.c.nu_f,
+            diameter: self.params.c.d,
+            particle_density: self.params.c.rho_p,
+            fluid_viscosity: self.params.c.rho_f * self.params.c.nu_f,
         }
     }
 
     /// Particle pressure and stress at cells and faces from the current state.
     pub(super) fn evaluate_stress(&mut self) {
         let n = self.len();
-        let r = self.cfg.settings.shear_rate_regularisation;
-        match self.m.rheology {
+        let r = self.params.cfg.settings.shear_rate_regularisation;
+        match self.params.m.rheology {
             Rheology::Kinetic { model: kt, elastic } => {
                 self.kinetic_coefficients(kt, &elastic);
                 let mu_s = kt.static_friction();
-                let co = &mut self.co;
+                let co = &mut self.work.co;
                 for j in 0..=n {
                     let (l, rr) = (j.saturating_sub(1), j.min(n - 1));
                     let g = co.face_gamma[j];
@@ -47,25 +47,25 @@ impl Eulerian<'_> {
                 // mu(X) at the face states: one batch of control numbers, one of friction
                 for j in 0..=n {
                     let (l, rr) = (j.saturating_sub(1), j.min(n - 1));
-                    let co = &self.co;
+                    let co = &self.work.co;
                     let p = 0.5 * (co.pres[l].p + co.overburden[l] + co.pres[rr].p + co.overburden[rr]);
-                    self.sc.face_p[j] = p;
-                    self.sc.face_states[j] = self.local_state(co.face_gamma[j], p);
+                    self.work.sc.face_p[j] = p;
+                    self.work.sc.face_states[j] = self.local_state(co.face_gamma[j], p);
                 }
-                let sc = &mut self.sc;
+                let sc = &mut self.work.sc;
                 model.control_number_batch(&sc.face_states, &mut sc.face_x);
                 model.eval_batch(&sc.face_x, &mut sc.face_mu, &mut sc.face_packing);
                 for j in 0..=n {
-                    let (t0, sec) = coulomb(sc.face_mu[j] * sc.face_p[j], self.co.face_gamma[j], r);
-                    self.co.eta_face[j] = sec;
-                    self.co.sigma_face[j] = 0.0;
-                    self.co.tau_p[j] = t0;
+                    let (t0, sec) = coulomb(sc.face_mu[j] * sc.face_p[j], self.work.co.face_gamma[j], r);
+                    self.work.co.eta_face[j] = sec;
+                    self.work.co.sigma_face[j] = 0.0;
+                    self.work.co.tau_p[j] = t0;
                 }
             }
         }
-        self.co.tau_p[n] = 0.0;
-        let h = self.op.spacing();
-        for ((cond, &eta), &hj) in self.co.part_cond.iter_mut().zip(&self.co.eta_face).zip(h).take(n).skip(1) {
+        self.work.co.tau_p[n] = 0.0;
+        let h = self.params.op.spacing();
+        for ((cond, &eta), &hj) in self.work.co.part_cond.iter_mut().zip(&self.work.co.eta_face).zip(h).take(n).skip(1) {
             *cond = eta / hj;
         }
     }
@@ -75,37 +75,37 @@ impl Eulerian<'_> {
     /// difference, and the pressure, viscosity and conductivity of eqs 2.19-2.21.
     fn kinetic_coefficients(&mut self, kt: &dyn KineticTheory, elastic: &Elastic) {
         let n = self.len();
-        let c = self.c;
+        let c = self.params.c;
         let salt = kt.saltation_enabled();
         let phi_max = kt.phi_max();
-        let sc = &mut self.sc;
+        let sc = &mut self.work.sc;
         for i in 0..n {
-            let phi = self.s.phi[i].max(0.0);
+            let phi = self.state.phi[i].max(0.0);
             sc.phi_c[i] = phi;
             // dF1/dphi one-sided away from phi_max (F1 is convex and >= phi, so the slope
             // is >= F1/phi, the dilute limit 1); at phi_max the point is not used
             sc.phi_h[i] = if phi + DPHI < phi_max { phi + DPHI } else { phi };
             sc.salt[i] = SaltationInput {
-                sqrt_t: self.s.temp[i].max(0.0).sqrt(),
-                k_drag: self.co.k_drag[i],
+                sqrt_t: self.state.temp[i].max(0.0).sqrt(),
+                k_drag: self.work.co.k_drag[i],
                 particle_density: c.rho_p,
                 diameter: c.d,
             };
         }
-        kt.coefficients_batch(&sc.phi_c, salt.then_some(&sc.salt[..]), &mut self.co.coef);
+        kt.coefficients_batch(&sc.phi_c, salt.then_some(&sc.salt[..]), &mut self.work.co.coef);
         kt.pressure_coefficient_batch(&sc.phi_h, &mut sc.f1_h);
         for i in 0..n {
             let phi = sc.phi_c[i];
-            let co = self.co.coef[i];
+            let co = self.work.co.coef[i];
             let f1p = if phi + DPHI < phi_max { (sc.f1_h[i] - co.f1) / DPHI } else { co.f1 / phi.max(1e-12) };
-            self.co.f1_slope[i] = f1p.max(0.0);
+            self.work.co.f1_slope[i] = f1p.max(0.0);
             let st = sc.salt[i].sqrt_t;
-            self.co.eta_kin[i] = kt.shear_viscosity(&co, c.rho_p, c.d, st);
-            self.co.kappa[i] = kt.conductivity(&co, c.rho_p, c.d, st);
+            self.work.co.eta_kin[i] = kt.shear_viscosity(&co, c.rho_p, c.d, st);
+            self.work.co.kappa[i] = kt.conductivity(&co, c.rho_p, c.d, st);
         }
         for (i, &phi) in sc.phi_c.iter().enumerate() {
-            self.co.pres[i].p_el = elastic.pressure(phi);
-            self.co.elastic_slope[i] = elastic.derivative(phi);
+            self.work.co.pres[i].p_el = elastic.pressure(phi);
+            self.work.co.elastic_slope[i] = elastic.derivative(phi);
         }
         self.kinetic_pressures(kt);
     }
@@ -115,9 +115,9 @@ impl Eulerian<'_> {
     /// and the coefficients are those of [`Self::kinetic_coefficients`]: phi is the same
     /// until the phi step, so the temperature step reuses them.
     pub(super) fn kinetic_pressures(&mut self, kt: &dyn KineticTheory) {
-        let rho_p = self.c.rho_p;
-        let co = &mut self.co;
-        for (i, (&phi, &t)) in self.s.phi.iter().zip(&self.s.temp).enumerate() {
+        let rho_p = self.params.c.rho_p;
+        let co = &mut self.work.co;
+        for (i, (&phi, &t)) in self.state.phi.iter().zip(&self.state.temp).enumerate() {
             let (phi, t) = (phi.max(0.0), t.max(0.0));
             let p_el = co.pres[i].p_el;
             let a = co.elastic_slope[i] + rho_p * t * co.f1_slope[i];
@@ -132,12 +132,12 @@ impl Eulerian<'_> {
     fn local_pressures(&mut self, model: &dyn LocalRheology, elastic: Elastic) {
         let n = self.len();
         for i in 0..n {
-            let phi = self.s.phi[i].max(0.0);
-            self.sc.phi_c[i] = phi;
-            self.sc.phi_h[i] = phi + DPHI;
-            self.sc.cell_states[i] = self.local_state(self.co.gamma_p[i], 0.0);
+            let phi = self.state.phi[i].max(0.0);
+            self.work.sc.phi_c[i] = phi;
+            self.work.sc.phi_h[i] = phi + DPHI;
+            self.work.sc.cell_states[i] = self.local_state(self.work.co.gamma_p[i], 0.0);
         }
-        let sc = &mut self.sc;
+        let sc = &mut self.work.sc;
         model.control_of_packing_batch(&sc.phi_c, &mut sc.cell_x);
         model.control_of_packing_batch(&sc.phi_h, &mut sc.cell_x_h);
         model.pressure_at_batch(&sc.cell_states, &sc.cell_x, &mut sc.cell_p);
@@ -154,7 +154,7 @@ impl Eulerian<'_> {
                 elastic.derivative(phi)
             };
             let p_el = elastic.pressure(phi);
-            self.co.pres[i] = Pressure { p, p_el, a, b: p - a * phi };
+            self.work.co.pres[i] = Pressure { p, p_el, a, b: p - a * phi };
         }
     }
 
@@ -172,21 +172,21 @@ impl Eulerian<'_> {
     /// so the phi step, which sees pressure differences only, is unchanged.
     fn surface_overburden(&mut self) {
         let n = self.len();
-        let gw = self.c.buoyant_weight;
-        let h = self.op.spacing();
+        let gw = self.params.c.buoyant_weight;
+        let h = self.params.op.spacing();
         let mut sum = 0.0;
-        self.co.overburden[n - 1] = 0.0;
+        self.work.co.overburden[n - 1] = 0.0;
         for j in (1..n).rev() {
             let (l, r) = (j - 1, j);
-            let (phi_l, phi_r) = (self.s.phi[l].max(0.0), self.s.phi[r].max(0.0));
+            let (phi_l, phi_r) = (self.state.phi[l].max(0.0), self.state.phi[r].max(0.0));
             let phi_c = 0.5 * (phi_l + phi_r);
-            let (pl, pr) = (self.co.pres[l].p, self.co.pres[r].p);
+            let (pl, pr) = (self.work.co.pres[l].p, self.work.co.pres[r].p);
             let force = gw * phi_c * h[j] + pr - pl;
             if phi_c > 0.0 && force > 0.0 && force.is_finite() {
                 let (ratio, _) = self.well_balanced_face(j, 1.0, gw, pl, pr);
                 sum += (1.0 - ratio.min(1.0)).max(0.0) * force;
             }
-            self.co.overburden[l] = sum;
+            self.work.co.overburden[l] = sum;
         }
     }
 
@@ -198,7 +198,7 @@ impl Eulerian<'_> {
     /// balance by (gamma_new / gamma_old)^2, and since mu(I) is flat (a stress-ratio error
     /// of 0.4 % is an I error of 1.6 %) that loop amplifies: the profiles never settle.
     pub(super) fn update_local_pressure(&mut self) {
-        let Rheology::Local { model, elastic } = self.m.rheology else { return };
+        let Rheology::Local { model, elastic } = self.params.m.rheology else { return };
         self.shear_rates();
         self.local_pressures(model, elastic);
     }

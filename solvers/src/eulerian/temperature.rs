@@ -14,21 +14,21 @@ impl Eulerian<'_> {
     /// and the dissipation rate per unit T of the state, which then holds their
     /// extrapolation to the end of the step ([`Eulerian::extrapolate`]).
     pub(super) fn solve_temperature(&mut self, dt: f64, bdf2: Option<Bdf2>) -> Result<(), Breakdown> {
-        let Rheology::Kinetic { model: kt, .. } = self.m.rheology else { return Ok(()) };
+        let Rheology::Kinetic { model: kt, .. } = self.params.m.rheology else { return Ok(()) };
         let n = self.len();
-        let c = self.c;
-        let top = self.op.stress_free_shear_top(&self.s.up);
-        self.op.shear_rate(&self.s.up, top, &mut self.co.gamma_p);
-        let dz = self.op.grid().dz();
-        let h = self.op.spacing();
-        let cd_inf = self.m.drag.cd_inf();
-        let (s, co) = (&self.s, &self.co);
-        let (t_now, t_before) = (self.saved.temp(), &self.stepping.previous.temp);
-        for (cd, &r) in self.sc.cd.iter_mut().zip(&co.cd_ratio) {
+        let c = self.params.c;
+        let top = self.params.op.stress_free_shear_top(&self.state.up);
+        self.params.op.shear_rate(&self.state.up, top, &mut self.work.co.gamma_p);
+        let dz = self.params.op.grid().dz();
+        let h = self.params.op.spacing();
+        let cd_inf = self.params.m.drag.cd_inf();
+        let (s, co) = (&self.state, &self.work.co);
+        let (t_now, t_before) = (self.work.saved.temp(), &self.state.stepping.previous.temp);
+        for (cd, &r) in self.work.sc.cd.iter_mut().zip(&co.cd_ratio) {
             *cd = cd_inf / r.max(1e-300);
         }
-        kt.drag_dissipation_batch(cd_inf, &self.sc.cd, &mut self.sc.c_j);
-        let t = &mut self.sc.tri;
+        kt.drag_dissipation_batch(cd_inf, &self.work.sc.cd, &mut self.work.sc.c_j);
+        let t = &mut self.work.sc.tri;
         for (i, &dzi) in dz.iter().enumerate() {
             let phi = s.phi[i].max(0.0);
             let now = s.temp[i].max(0.0);
@@ -38,7 +38,7 @@ impl Eulerian<'_> {
             };
             let m = scale * 1.5 * c.rho_p * phi.max(PHI_FLOOR) * dzi / dt;
             let sink =
-                kt.dissipation_per_temperature(&co.coef[i], c.rho_p, c.d, now.sqrt()) + self.sc.c_j[i] * co.beta[i];
+                kt.dissipation_per_temperature(&co.coef[i], c.rho_p, c.d, now.sqrt()) + self.work.sc.c_j[i] * co.beta[i];
             let prod = co.eta_kin[i] * co.gamma_p[i] * co.gamma_p[i];
             t.lower[i] = 0.0;
             t.upper[i] = 0.0;
@@ -52,15 +52,15 @@ impl Eulerian<'_> {
             t.diag[j] += k;
             t.lower[j] -= k;
         }
-        if let Err(row) = t.solve(&mut self.sc.work) {
+        if let Err(row) = t.solve(&mut self.work.sc.work) {
             return Err(self.breakdown(row, "theta_g", f64::NAN, "singular temperature system".into()));
         }
         for i in 0..n {
-            let v = self.sc.work[i];
+            let v = self.work.sc.work[i];
             if !(v.is_finite() && v >= -1e-300) {
                 return Err(self.breakdown(i, "theta_g", v, "granular temperature not finite or negative".into()));
             }
-            self.s.temp[i] = v.max(0.0);
+            self.state.temp[i] = v.max(0.0);
         }
         // the phi step sees the new temperature
         self.kinetic_pressures(kt);

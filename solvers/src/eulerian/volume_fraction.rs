@@ -48,13 +48,13 @@ impl Eulerian<'_> {
     /// sum to one, so the sediment mass is kept to round-off as in backward Euler.
     pub(super) fn solve_phi(&mut self, dt: f64, bdf2: Option<Bdf2>) -> Result<(), Breakdown> {
         let n = self.len();
-        let gw = self.c.buoyant_weight;
-        let (hs, dz) = (self.op.spacing(), self.op.grid().dz());
+        let gw = self.params.c.buoyant_weight;
+        let (hs, dz) = (self.params.op.spacing(), self.params.op.grid().dz());
         // local rheologies: the well-balanced deferred correction (see
         // `well_balanced_face`); kinetic theory keeps the MUSCL one
-        let well_balanced = matches!(self.m.rheology, Rheology::Local { .. });
+        let well_balanced = matches!(self.params.m.rheology, Rheology::Local { .. });
         // face coefficients: F_j = cl phi_L + cr phi_R + s
-        let mut coeffs = std::mem::take(&mut self.sc.face_coeffs);
+        let mut coeffs = std::mem::take(&mut self.work.sc.face_coeffs);
         coeffs.clear();
         coeffs.resize(3 * (n + 1), 0.0);
         for j in 1..n {
@@ -63,22 +63,22 @@ impl Eulerian<'_> {
             // the grains' volume fraction from the cell upwind of the settling (`up`), their
             // mobility from the cell downwind (`down`): see `solve_phi`'s doc
             let (up, down) = if gw >= 0.0 { (r, l) } else { (l, r) };
-            let m = self.co.mobility[down];
+            let m = self.work.co.mobility[down];
             // drift flux -eps D dphi/dz (gradient) or -eps d(D phi)/dz (Ito), implicit in phi
             // with eps and D lagged: both keep the M-matrix (cl >= 0 >= cr), so the drift
             // costs no time-step restriction however large D is
-            let (dl, dr) = match self.drift_form {
+            let (dl, dr) = match self.params.drift_form {
                 DriftForm::Gradient => {
                     let dd =
-                        0.5 * ((1.0 - self.s.phi[l]) * self.co.drift[l] + (1.0 - self.s.phi[r]) * self.co.drift[r]);
+                        0.5 * ((1.0 - self.state.phi[l]) * self.work.co.drift[l] + (1.0 - self.state.phi[r]) * self.work.co.drift[r]);
                     (dd, dd)
                 }
                 DriftForm::Ito => {
-                    let eps = 1.0 - 0.5 * (self.s.phi[l] + self.s.phi[r]);
-                    (eps * self.co.drift[l], eps * self.co.drift[r])
+                    let eps = 1.0 - 0.5 * (self.state.phi[l] + self.state.phi[r]);
+                    (eps * self.work.co.drift[l], eps * self.work.co.drift[r])
                 }
             };
-            let (pl, pr) = (self.co.pres[l], self.co.pres[r]);
+            let (pl, pr) = (self.work.co.pres[l], self.work.co.pres[r]);
             // local rheologies: factor r on the pressure part of the flux and the deferred
             // correction of the weight; kinetic theory: r = 1 and the MUSCL correction below
             let wb = if well_balanced { Some(self.well_balanced_face(j, m, gw, pl.p, pr.p)) } else { None };
@@ -88,8 +88,8 @@ impl Eulerian<'_> {
             let (t, w0) = self.settling_newton(j, down);
             let mg = m / t;
             let mp = mg * wb.map_or(1.0, |w| w.0);
-            self.sc.drift_lr[2 * j] = dl;
-            self.sc.drift_lr[2 * j + 1] = dr;
+            self.work.sc.drift_lr[2 * j] = dl;
+            self.work.sc.drift_lr[2 * j + 1] = dr;
             let mut cl = mp * pl.a / h + dl / h;
             let mut cr = -mp * pr.a / h - dr / h;
             if up == r {
@@ -108,9 +108,9 @@ impl Eulerian<'_> {
             // clear fluid, so phi stays >= 0); the steady balance is then
             // dp/dz = -phi_face (rho_p - rho_f) g cos to second order
             let (down, upv, beyond) = if up == r {
-                (self.s.phi[l], self.s.phi[r], if r + 1 < n { self.s.phi[r + 1] } else { self.s.phi[r] })
+                (self.state.phi[l], self.state.phi[r], if r + 1 < n { self.state.phi[r + 1] } else { self.state.phi[r] })
             } else {
-                (self.s.phi[r], self.s.phi[l], if l > 0 { self.s.phi[l - 1] } else { self.s.phi[l] })
+                (self.state.phi[r], self.state.phi[l], if l > 0 { self.state.phi[l - 1] } else { self.state.phi[l] })
             };
             let correction = 0.5 * minmod(down - upv, upv - beyond);
             let deferred = wb.map_or(-mg * gw * correction, |w| w.1 / t);
@@ -118,14 +118,14 @@ impl Eulerian<'_> {
             coeffs[3 * j + 1] = cr;
             coeffs[3 * j + 2] = -mp * (pr.b - pl.b) / h + deferred;
         }
-        let t = &mut self.sc.tri;
+        let t = &mut self.work.sc.tri;
         // the BDF2 row's mass factor and old phi (backward Euler: 1 and the state's phi)
         let scale = bdf2.map_or(1.0, |b| b.scale());
-        let mut old = std::mem::take(&mut self.sc.old_phi);
+        let mut old = std::mem::take(&mut self.work.sc.old_phi);
         old.clear();
         match bdf2 {
-            Some(b) => old.extend(self.saved.phi().iter().zip(&self.stepping.previous.phi).map(|(&a, &p)| b.old(a, p))),
-            None => old.extend_from_slice(&self.s.phi),
+            Some(b) => old.extend(self.work.saved.phi().iter().zip(&self.state.stepping.previous.phi).map(|(&a, &p)| b.old(a, p))),
+            None => old.extend_from_slice(&self.state.phi),
         }
         for i in 0..n {
             let m = scale * dz[i] / dt;
@@ -136,65 +136,65 @@ impl Eulerian<'_> {
             t.lower[i] = -cl_dn;
             // delta form: the right side is minus the divergence of the fluxes at the old
             // phi, a telescoping sum, so the mass change is round-off of the increment
-            let f_up = cl_up * self.s.phi[i] + if i + 1 < n { cr_up * self.s.phi[i + 1] } else { 0.0 } + s_up;
-            let f_dn = if i > 0 { cl_dn * self.s.phi[i - 1] } else { 0.0 } + cr_dn * self.s.phi[i] + s_dn;
+            let f_up = cl_up * self.state.phi[i] + if i + 1 < n { cr_up * self.state.phi[i + 1] } else { 0.0 } + s_up;
+            let f_dn = if i > 0 { cl_dn * self.state.phi[i - 1] } else { 0.0 } + cr_dn * self.state.phi[i] + s_dn;
             t.rhs[i] = f_dn - f_up;
             if bdf2.is_some() {
-                t.rhs[i] -= m * (self.s.phi[i] - old[i]);
+                t.rhs[i] -= m * (self.state.phi[i] - old[i]);
             }
         }
-        if let Err(row) = t.solve(&mut self.sc.work) {
-            self.sc.face_coeffs = coeffs;
-            self.sc.old_phi = old;
+        if let Err(row) = t.solve(&mut self.work.sc.work) {
+            self.work.sc.face_coeffs = coeffs;
+            self.work.sc.old_phi = old;
             return Err(self.breakdown(row, "phi", f64::NAN, "singular volume-fraction system".into()));
         }
         // fluxes of the implicit solution, then phi rebuilt from them in flux form: the
         // same solution up to the round-off of the solve, but the mass changes only by the
         // round-off of a telescoping sum, however ill-conditioned the stiff system is
         for i in 0..n {
-            self.sc.work[i] += self.s.phi[i];
+            self.work.sc.work[i] += self.state.phi[i];
         }
-        self.s.flux[0] = 0.0;
-        self.s.flux[n] = 0.0;
+        self.state.flux[0] = 0.0;
+        self.state.flux[n] = 0.0;
         for j in 1..n {
-            self.s.flux[j] =
-                coeffs[3 * j] * self.sc.work[j - 1] + coeffs[3 * j + 1] * self.sc.work[j] + coeffs[3 * j + 2];
+            self.state.flux[j] =
+                coeffs[3 * j] * self.work.sc.work[j - 1] + coeffs[3 * j + 1] * self.work.sc.work[j] + coeffs[3 * j + 2];
         }
         for (i, &dzi) in dz.iter().enumerate() {
-            self.sc.work[i] = old[i] - dt / (scale * dzi) * (self.s.flux[i + 1] - self.s.flux[i]);
+            self.work.sc.work[i] = old[i] - dt / (scale * dzi) * (self.state.flux[i + 1] - self.state.flux[i]);
         }
-        if self.m.fluctuation.is_some() {
+        if self.params.m.fluctuation.is_some() {
             // the drift part of the flux of the new phi, as the flux itself
             for (j, &h) in hs.iter().enumerate().take(n).skip(1) {
-                let (dl, dr) = (self.sc.drift_lr[2 * j], self.sc.drift_lr[2 * j + 1]);
-                self.s.drift_flux[j] = (dl * self.sc.work[j - 1] - dr * self.sc.work[j]) / h;
+                let (dl, dr) = (self.work.sc.drift_lr[2 * j], self.work.sc.drift_lr[2 * j + 1]);
+                self.state.drift_flux[j] = (dl * self.work.sc.work[j - 1] - dr * self.work.sc.work[j]) / h;
             }
         }
-        let phi_max = self.m.rheology.phi_max();
+        let phi_max = self.params.m.rheology.phi_max();
         for i in 0..n {
-            let v = self.sc.work[i];
+            let v = self.work.sc.work[i];
             let bad = if !v.is_finite() {
                 Some("not finite")
             } else if v < -1e-9 {
                 Some("negative")
             } else if v >= phi_max {
                 Some("at or above the maximum packing of the granular closure")
-            } else if (v - if bdf2.is_some() { self.saved.phi()[i] } else { self.s.phi[i] }).abs()
-                > self.cfg.settings.max_phi_change
+            } else if (v - if bdf2.is_some() { self.work.saved.phi()[i] } else { self.state.phi[i] }).abs()
+                > self.params.cfg.settings.max_phi_change
             {
                 Some("changed more than solver.eulerian.max_phi_change in one step")
             } else {
                 None
             };
             if let Some(reason) = bad {
-                self.sc.face_coeffs = coeffs;
-                self.sc.old_phi = old;
+                self.work.sc.face_coeffs = coeffs;
+                self.work.sc.old_phi = old;
                 return Err(self.breakdown(i, "phi", v, reason.into()));
             }
         }
-        self.s.phi.copy_from_slice(&self.sc.work);
-        self.sc.face_coeffs = coeffs;
-        self.sc.old_phi = old;
+        self.state.phi.copy_from_slice(&self.work.sc.work);
+        self.work.sc.face_coeffs = coeffs;
+        self.work.sc.old_phi = old;
         Ok(())
     }
 
@@ -216,9 +216,9 @@ impl Eulerian<'_> {
     /// matrix stays an M-matrix. At steady state w = w0 and the flux is the Picard one: the
     /// steady state (and the well-balanced bed, where w0 = 0) is unchanged.
     fn settling_newton(&self, j: usize, cell: usize) -> (f64, f64) {
-        let t = self.co.normal_tangent[cell];
-        let settling = self.s.flux[j] - self.s.drift_flux[j];
-        let donor = if settling < 0.0 { self.s.phi[j] } else { self.s.phi[j - 1] };
+        let t = self.work.co.normal_tangent[cell];
+        let settling = self.state.flux[j] - self.state.drift_flux[j];
+        let donor = if settling < 0.0 { self.state.phi[j] } else { self.state.phi[j - 1] };
         let w0 = if donor > 0.0 && t > 1.0 { settling / donor } else { 0.0 };
         (t, if w0.is_finite() { w0 } else { 0.0 })
     }
@@ -246,9 +246,9 @@ impl Eulerian<'_> {
     pub(super) fn well_balanced_face(&self, j: usize, m: f64, gw: f64, pl: f64, pr: f64) -> (f64, f64) {
         let n = self.len();
         let (l, r) = (j - 1, j);
-        let (phi_l, phi_r) = (self.s.phi[l].max(0.0), self.s.phi[r].max(0.0));
+        let (phi_l, phi_r) = (self.state.phi[l].max(0.0), self.state.phi[r].max(0.0));
         let phi_c = 0.5 * (phi_l + phi_r);
-        let force = gw * phi_c + (pr - pl) / self.op.spacing()[j];
+        let force = gw * phi_c + (pr - pl) / self.params.op.spacing()[j];
         if !(phi_c > 0.0 && force.is_finite()) {
             // no grains on either side (or an infinite pressure, which the phi step then
             // rejects): the upwind flux
@@ -257,10 +257,10 @@ impl Eulerian<'_> {
         let up_g = if gw >= 0.0 { phi_r } else { phi_l };
         // MUSCL value upwind of w: the upper cell when force > 0 (w < 0, downwards)
         let phi_w = if force > 0.0 {
-            let beyond = if r + 1 < n { self.s.phi[r + 1] } else { phi_r };
+            let beyond = if r + 1 < n { self.state.phi[r + 1] } else { phi_r };
             phi_r + 0.5 * minmod(phi_l - phi_r, phi_r - beyond)
         } else {
-            let beyond = if l > 0 { self.s.phi[l - 1] } else { phi_l };
+            let beyond = if l > 0 { self.state.phi[l - 1] } else { phi_l };
             phi_l + 0.5 * minmod(phi_r - phi_l, phi_l - beyond)
         };
         (phi_w / phi_c, -m * gw * (phi_w - up_g))

@@ -15,24 +15,24 @@ impl Eulerian<'_> {
     /// scene's own temperature stays. A two-equation turbulence closure's k and omega are
     /// not in the profiles: refused.
     pub(super) fn warm_start_from(&mut self, p: &Profiles) -> Result<(), String> {
-        if self.s.kw.is_some() {
+        if self.state.kw.is_some() {
             return Err("the k and omega of a two-equation turbulence closure are not in the profiles".into());
         }
-        let p = StartProfiles::new(p, self.kinetic)?;
-        let centres = self.op.grid().centres().to_vec();
-        let dz = self.op.grid().dz();
+        let p = StartProfiles::new(p, self.params.kinetic)?;
+        let centres = self.params.op.grid().centres().to_vec();
+        let dz = self.params.op.grid().dz();
         for (i, &zc) in centres.iter().enumerate() {
-            self.s.phi[i] = p.phi(zc);
-            self.s.uf[i] = p.u_f(zc);
-            self.s.up[i] = p.u_p(zc);
+            self.state.phi[i] = p.phi(zc);
+            self.state.uf[i] = p.u_f(zc);
+            self.state.up[i] = p.u_p(zc);
             if let Some(v) = p.theta_g(zc) {
                 if v > 0.0 {
-                    self.s.temp[i] = v;
+                    self.state.temp[i] = v;
                 }
             }
         }
-        let mass = self.s.sediment_height(dz);
-        let clear = self.s.mass0 <= 0.0;
+        let mass = self.state.sediment_height(dz);
+        let clear = self.state.mass0 <= 0.0;
         if clear && mass > 0.0 {
             return Err("the profiles hold sediment and the scene none".into());
         }
@@ -40,11 +40,11 @@ impl Eulerian<'_> {
             if mass.is_nan() || mass <= 0.0 {
                 return Err("the profiles hold no sediment and the scene some".into());
             }
-            let scale = self.s.mass0 / mass;
-            self.s.phi.iter_mut().for_each(|v| *v *= scale);
+            let scale = self.state.mass0 / mass;
+            self.state.phi.iter_mut().for_each(|v| *v *= scale);
         }
-        self.s.flux.iter_mut().for_each(|v| *v = 0.0);
-        self.s.drift_flux.iter_mut().for_each(|v| *v = 0.0);
+        self.state.flux.iter_mut().for_each(|v| *v = 0.0);
+        self.state.drift_flux.iter_mut().for_each(|v| *v = 0.0);
         self.evaluate().map_err(|b| format!("the warm state: {b}"))
     }
 }
