@@ -5,7 +5,6 @@
 
 use saltus_core::{ColumnView, TurbulencePoint};
 
-use super::config::Top;
 use super::Eulerian;
 use crate::inputs;
 use crate::run::Breakdown;
@@ -14,18 +13,9 @@ use crate::run::Breakdown;
 const DRE: f64 = 1e-6;
 
 impl Eulerian<'_> {
-    /// Top value of the fluid velocity in the shear rate: the lid's, or that of a
-    /// stress-free top ([`crate::column::ColumnOperator::stress_free_shear_top`]).
-    pub(super) fn fluid_top(&self, u: &[f64]) -> f64 {
-        match self.params.cfg.domain.top {
-            Top::Lid => self.params.cfg.domain.lid_velocity,
-            _ => self.params.op.stress_free_shear_top(u),
-        }
-    }
-
     /// Shear rates at cells and faces of the current u_f and u_p.
     pub(super) fn shear_rates(&mut self) {
-        let top_f = self.fluid_top(&self.state.uf);
+        let top_f = self.params.fluid_top(&self.state.uf);
         let top_p = self.params.op.stress_free_shear_top(&self.state.up);
         self.params.op.shear_rate(&self.state.uf, top_f, &mut self.work.co.gamma_f);
         self.params.op.shear_rate(&self.state.up, top_p, &mut self.work.co.gamma_p);
@@ -85,8 +75,8 @@ impl Eulerian<'_> {
         for i in 0..n {
             let phi = self.state.phi[i].clamp(0.0, 1.0 - 1e-12);
             // the slip of eq 4.3, u_f - u_p + u_d: the particle flux less its drift part
-            let f =
-                0.5 * (self.state.flux[i] + self.state.flux[i + 1]) - 0.5 * (self.state.drift_flux[i] + self.state.drift_flux[i + 1]);
+            let f = 0.5 * (self.state.flux[i] + self.state.flux[i + 1])
+                - 0.5 * (self.state.drift_flux[i] + self.state.drift_flux[i + 1]);
             let wp = if phi > self.params.slip_phi { f / phi } else { 0.0 };
             let slip = crate::inputs::mean_slip(self.state.uf[i], self.state.up[i], wp, phi);
             sc.phi_c[i] = phi;

@@ -346,10 +346,34 @@ impl<'a> Eulerian<'a> {
     }
 
     pub(super) fn breakdown(&self, cell: usize, field: &'static str, value: f64, reason: String) -> Breakdown {
-        let place = match self.z().get(cell) {
-            Some(&z) => Place::Cell { index: cell, z },
-            None => Place::Column,
-        };
-        Breakdown { time: self.state.time, place, field: field.into(), value, reason }
+        breakdown(&self.params, &self.state, cell, field, value, reason)
+    }
+}
+
+/// The breakdown of `field` at `cell` (the column when the index is past its cells) at
+/// the state's time.
+pub(super) fn breakdown(
+    params: &Params,
+    state: &State,
+    cell: usize,
+    field: &'static str,
+    value: f64,
+    reason: String,
+) -> Breakdown {
+    let place = match params.op.grid().centres().get(cell) {
+        Some(&z) => Place::Cell { index: cell, z },
+        None => Place::Column,
+    };
+    Breakdown { time: state.time, place, field: field.into(), value, reason }
+}
+
+impl Params<'_> {
+    /// Top value of the fluid velocity in the shear rate: the lid's, or that of a
+    /// stress-free top ([`crate::column::ColumnOperator::stress_free_shear_top`]).
+    pub(super) fn fluid_top(&self, u: &[f64]) -> f64 {
+        match self.cfg.domain.top {
+            Top::Lid => self.cfg.domain.lid_velocity,
+            _ => self.op.stress_free_shear_top(u),
+        }
     }
 }

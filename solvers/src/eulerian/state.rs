@@ -67,7 +67,6 @@ pub(super) struct Previous {
     pub dt: f64,
 }
 
-
 /// The fields of [`State`] a rejected step restores (nu_t is a relaxation lag, not
 /// restored: the retry relaxes it once more, as every attempt does).
 #[derive(Default)]

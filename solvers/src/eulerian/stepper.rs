@@ -13,6 +13,11 @@ use std::time::Instant;
 
 use saltus_core::scene::TimeStepping;
 
+use super::k_omega::solve_two_equation;
+use super::momentum::solve_momentum;
+use super::rheology::Rheology;
+use super::temperature::solve_temperature;
+use super::volume_fraction::solve_phi;
 use super::{stage, Eulerian};
 use crate::column::bdf2::Bdf2;
 use crate::run::{Breakdown, Clock, Ending, Limits, Phase, Progress, Sample, Stepper};
@@ -26,7 +31,8 @@ impl Eulerian<'_> {
         let t = Instant::now();
         self.state.save(&mut self.work.saved);
         let grad = self.pressure_gradient(self.state.time + dt);
-        let bdf2 = self.accurate().then_some(self.state.stepping.previous.dt).filter(|&p| p > 0.0).map(|p| Bdf2::new(dt / p));
+        let bdf2 =
+            self.accurate().then_some(self.state.stepping.previous.dt).filter(|&p| p > 0.0).map(|p| Bdf2::new(dt / p));
         let t = match bdf2 {
             Some(b) => {
                 self.extrapolate(b)?;
@@ -34,17 +40,23 @@ impl Eulerian<'_> {
             }
             None => t,
         };
-        self.solve_momentum(dt, grad, bdf2)?;
-        let t = self.work.stages.lap(stage::MOMENTUM, t);
-        if self.params.kinetic {
-            self.solve_temperature(dt, bdf2)?;
+        let Self { params, state, work } = self;
+        solve_momentum(params, state, work, dt, grad, bdf2)?;
+        let t = work.stages.lap(stage::MOMENTUM, t);
+        if params.kinetic {
+            solve_temperature(params, state, work, dt, bdf2)?;
+            if let Rheology::Kinetic { model, .. } = self.params.m.rheology {
+                // the phi step sees the new temperature
+                self.kinetic_pressures(model);
+            }
         } else {
             self.update_local_pressure();
         }
-        let t = self.work.stages.lap(stage::GRANULAR, t);
-        self.solve_two_equation(dt, bdf2)?;
-        let t = self.work.stages.lap(stage::TURBULENCE, t);
-        let r = self.solve_phi(dt, bdf2);
+        let Self { params, state, work } = self;
+        let t = work.stages.lap(stage::GRANULAR, t);
+        solve_two_equation(params, state, work, dt, bdf2)?;
+        let t = work.stages.lap(stage::TURBULENCE, t);
+        let r = solve_phi(params, state, work, dt, bdf2);
         let t = self.work.stages.lap(stage::VOLUME_FRACTION, t);
         r.map(|()| t)
     }
@@ -109,7 +121,8 @@ impl Eulerian<'_> {
     /// The run's own ending at the current state, if any: the steady state, never in
     /// time-accurate stepping (the driver applies the end time and the step cap).
     fn ending(&self) -> Option<Ending> {
-        (!self.accurate() && self.state.stepping.calm >= self.params.cfg.settings.steady_steps).then_some(Ending::Steady)
+        (!self.accurate() && self.state.stepping.calm >= self.params.cfg.settings.steady_steps)
+            .then_some(Ending::Steady)
     }
 
     /// Whether the momentum is stepped by BDF2 (`solver.eulerian.time_stepping = "accurate"`).
@@ -185,8 +198,14 @@ impl Stepper for Eulerian<'_> {
                     self.remember(step);
                     self.state.time += step;
                     self.state.steps += 1;
-                    let (rate, grow) =
-                        self.state.rates(&self.work.saved, step, self.params.kinetic, max_change, field_change, self.accurate());
+                    let (rate, grow) = self.state.rates(
+                        &self.work.saved,
+                        step,
+                        self.params.kinetic,
+                        max_change,
+                        field_change,
+                        self.accurate(),
+                    );
                     self.state.residual = rate;
                     self.state.stepping.calm = if rate < tol { self.state.stepping.calm + 1 } else { 0 };
                     self.state.stepping.dt = (dt * grow).min(dt_max);

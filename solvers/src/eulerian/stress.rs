@@ -65,7 +65,8 @@ impl Eulerian<'_> {
         }
         self.work.co.tau_p[n] = 0.0;
         let h = self.params.op.spacing();
-        for ((cond, &eta), &hj) in self.work.co.part_cond.iter_mut().zip(&self.work.co.eta_face).zip(h).take(n).skip(1) {
+        for ((cond, &eta), &hj) in self.work.co.part_cond.iter_mut().zip(&self.work.co.eta_face).zip(h).take(n).skip(1)
+        {
             *cond = eta / hj;
         }
     }
@@ -183,7 +184,8 @@ impl Eulerian<'_> {
             let (pl, pr) = (self.work.co.pres[l].p, self.work.co.pres[r].p);
             let force = gw * phi_c * h[j] + pr - pl;
             if phi_c > 0.0 && force > 0.0 && force.is_finite() {
-                let (ratio, _) = self.well_balanced_face(j, 1.0, gw, pl, pr);
+                let (ratio, _) =
+                    super::volume_fraction::well_balanced_face(&self.params, &self.state, j, 1.0, gw, pl, pr);
                 sum += (1.0 - ratio.min(1.0)).max(0.0) * force;
             }
             self.work.co.overburden[l] = sum;

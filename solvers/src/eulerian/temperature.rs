@@ -2,68 +2,78 @@
 //! 2.19-2.23 and the drag dissipation 2.25 or 3.13), kinetic closures only.
 
 use super::rheology::Rheology;
-use super::{Eulerian, PHI_FLOOR};
+use super::solver::{breakdown, Params, Workspace};
+use super::state::State;
+use super::PHI_FLOOR;
 use crate::column::bdf2::Bdf2;
 use crate::run::Breakdown;
 
-impl Eulerian<'_> {
-    /// Backward-Euler step of the granular temperature: production from the shear rate of
-    /// the new u_p (the column operator's, exact on stretched grids), conduction,
-    /// collisional and drag dissipation implicit, so T stays >= 0. With `bdf2`, a BDF2 step
-    /// ([`Bdf2::positive_row`]) from the last two accepted states, with the coefficients
-    /// and the dissipation rate per unit T of the state, which then holds their
-    /// extrapolation to the end of the step ([`Eulerian::extrapolate`]).
-    pub(super) fn solve_temperature(&mut self, dt: f64, bdf2: Option<Bdf2>) -> Result<(), Breakdown> {
-        let Rheology::Kinetic { model: kt, .. } = self.params.m.rheology else { return Ok(()) };
-        let n = self.len();
-        let c = self.params.c;
-        let top = self.params.op.stress_free_shear_top(&self.state.up);
-        self.params.op.shear_rate(&self.state.up, top, &mut self.work.co.gamma_p);
-        let dz = self.params.op.grid().dz();
-        let h = self.params.op.spacing();
-        let cd_inf = self.params.m.drag.cd_inf();
-        let (s, co) = (&self.state, &self.work.co);
-        let (t_now, t_before) = (self.work.saved.temp(), &self.state.stepping.previous.temp);
-        for (cd, &r) in self.work.sc.cd.iter_mut().zip(&co.cd_ratio) {
-            *cd = cd_inf / r.max(1e-300);
-        }
-        kt.drag_dissipation_batch(cd_inf, &self.work.sc.cd, &mut self.work.sc.c_j);
-        let t = &mut self.work.sc.tri;
-        for (i, &dzi) in dz.iter().enumerate() {
-            let phi = s.phi[i].max(0.0);
-            let now = s.temp[i].max(0.0);
-            let (scale, old) = match bdf2 {
-                Some(b) => b.positive_row(t_now[i].max(0.0), t_before[i]),
-                None => (1.0, now),
-            };
-            let m = scale * 1.5 * c.rho_p * phi.max(PHI_FLOOR) * dzi / dt;
-            let sink =
-                kt.dissipation_per_temperature(&co.coef[i], c.rho_p, c.d, now.sqrt()) + self.work.sc.c_j[i] * co.beta[i];
-            let prod = co.eta_kin[i] * co.gamma_p[i] * co.gamma_p[i];
-            t.lower[i] = 0.0;
-            t.upper[i] = 0.0;
-            t.diag[i] = m + sink * dzi;
-            t.rhs[i] = m * old + prod * dzi;
-        }
-        for (j, &hj) in h.iter().enumerate().take(n).skip(1) {
-            let k = 0.5 * (co.kappa[j - 1] + co.kappa[j]) / hj;
-            t.diag[j - 1] += k;
-            t.upper[j - 1] -= k;
-            t.diag[j] += k;
-            t.lower[j] -= k;
-        }
-        if let Err(row) = t.solve(&mut self.work.sc.work) {
-            return Err(self.breakdown(row, "theta_g", f64::NAN, "singular temperature system".into()));
-        }
-        for i in 0..n {
-            let v = self.work.sc.work[i];
-            if !(v.is_finite() && v >= -1e-300) {
-                return Err(self.breakdown(i, "theta_g", v, "granular temperature not finite or negative".into()));
-            }
-            self.state.temp[i] = v.max(0.0);
-        }
-        // the phi step sees the new temperature
-        self.kinetic_pressures(kt);
-        Ok(())
+/// Backward-Euler step of the granular temperature: production from the shear rate of
+/// the new u_p (the column operator's, exact on stretched grids), conduction,
+/// collisional and drag dissipation implicit, so T stays >= 0. With `bdf2`, a BDF2 step
+/// ([`Bdf2::positive_row`]) from the last two accepted states, with the coefficients
+/// and the dissipation rate per unit T of the state, which then holds their
+/// extrapolation to the end of the step ([`Eulerian::extrapolate`]).
+pub(super) fn solve_temperature(
+    params: &Params,
+    state: &mut State,
+    work: &mut Workspace,
+    dt: f64,
+    bdf2: Option<Bdf2>,
+) -> Result<(), Breakdown> {
+    let Rheology::Kinetic { model: kt, .. } = params.m.rheology else { return Ok(()) };
+    let n = state.len();
+    let c = params.c;
+    let top = params.op.stress_free_shear_top(&state.up);
+    params.op.shear_rate(&state.up, top, &mut work.co.gamma_p);
+    let dz = params.op.grid().dz();
+    let h = params.op.spacing();
+    let cd_inf = params.m.drag.cd_inf();
+    let (s, co) = (&*state, &work.co);
+    let (t_now, t_before) = (work.saved.temp(), &state.stepping.previous.temp);
+    for (cd, &r) in work.sc.cd.iter_mut().zip(&co.cd_ratio) {
+        *cd = cd_inf / r.max(1e-300);
     }
+    kt.drag_dissipation_batch(cd_inf, &work.sc.cd, &mut work.sc.c_j);
+    let t = &mut work.sc.tri;
+    for (i, &dzi) in dz.iter().enumerate() {
+        let phi = s.phi[i].max(0.0);
+        let now = s.temp[i].max(0.0);
+        let (scale, old) = match bdf2 {
+            Some(b) => b.positive_row(t_now[i].max(0.0), t_before[i]),
+            None => (1.0, now),
+        };
+        let m = scale * 1.5 * c.rho_p * phi.max(PHI_FLOOR) * dzi / dt;
+        let sink = kt.dissipation_per_temperature(&co.coef[i], c.rho_p, c.d, now.sqrt()) + work.sc.c_j[i] * co.beta[i];
+        let prod = co.eta_kin[i] * co.gamma_p[i] * co.gamma_p[i];
+        t.lower[i] = 0.0;
+        t.upper[i] = 0.0;
+        t.diag[i] = m + sink * dzi;
+        t.rhs[i] = m * old + prod * dzi;
+    }
+    for (j, &hj) in h.iter().enumerate().take(n).skip(1) {
+        let k = 0.5 * (co.kappa[j - 1] + co.kappa[j]) / hj;
+        t.diag[j - 1] += k;
+        t.upper[j - 1] -= k;
+        t.diag[j] += k;
+        t.lower[j] -= k;
+    }
+    if let Err(row) = t.solve(&mut work.sc.work) {
+        return Err(breakdown(params, state, row, "theta_g", f64::NAN, "singular temperature system".into()));
+    }
+    for i in 0..n {
+        let v = work.sc.work[i];
+        if !(v.is_finite() && v >= -1e-300) {
+            return Err(breakdown(
+                params,
+                state,
+                i,
+                "theta_g",
+                v,
+                "granular temperature not finite or negative".into(),
+            ));
+        }
+        state.temp[i] = v.max(0.0);
+    }
+    Ok(())
 }
