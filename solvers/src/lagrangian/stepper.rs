@@ -129,16 +129,14 @@ impl Stepper for Lagrangian<'_> {
         }
         let mat = self.material();
         let scales = output::TransportScales::new(self.scene(), mat.rho_p, mat.d, self.config().domain.water_depth);
-        let dz = self.dz();
-        let flux = &self.state.sums.v[0];
-        // sum over the slices of V v_x, over the bed area: the transport per unit width
-        let qs = flux.iter().sum::<f64>() / (self.cell_volume() / dz);
+        let qs = self.state.transport_rate();
         s.qs = finite(qs);
         s.qs_star = finite(scales.qs_star(qs));
         if let Some(col) = self.column() {
             let tau = col.shear_stress().iter().fold(0.0f64, |a, t| a.max(t.abs()));
             s.shields = finite(scales.shields(tau));
         }
+        let (dz, flux) = (self.dz(), &self.state.sums.v[0]);
         let (z1, _) = output::flux_levels_by(flux.len(), |i| i as f64 * dz, |i| flux[i], 0.01, 0.99);
         s.bed_surface = finite(z1);
         s

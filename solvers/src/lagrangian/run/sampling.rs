@@ -33,7 +33,7 @@ impl Lagrangian<'_> {
     /// fields): the particle sums and the granular fields, the fluid columns at rest.
     pub(crate) fn dry_sample(&mut self) {
         self.average();
-        let qs: f64 = self.state.sums.v[0].iter().sum::<f64>() / (self.state.cell_volume / self.state.field.dz);
+        let qs = self.state.transport_rate();
         let zeros = &self.work.zero_faces[..self.state.field.u.len()];
         self.state.stats.add(&self.state.sums, &self.state.field.u, zeros, zeros, zeros, &self.work.zero_faces, qs);
         self.sample_granular();

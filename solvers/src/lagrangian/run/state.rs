@@ -102,6 +102,12 @@ impl State {
         }
     }
 
+    /// The instantaneous transport rate per unit width (m^2/s): the slices' sum of V_p v_x
+    /// over the bed area, from the last averaging.
+    pub(crate) fn transport_rate(&self) -> f64 {
+        self.sums.v[0].iter().sum::<f64>() / (self.cell_volume / self.field.dz)
+    }
+
     /// Whether the sizes of this state fit together (a decoded checkpoint that does not
     /// is refused, never indexed).
     pub(crate) fn fits(&self) -> bool {

@@ -288,7 +288,7 @@ impl Lagrangian<'_> {
         }
         let t0 = self.work.stages.lap(stage::COLUMN, t0);
         self.check()?;
-        let qs: f64 = self.state.sums.v[0].iter().sum::<f64>() / (self.state.cell_volume / self.state.field.dz);
+        let qs = self.state.transport_rate();
         self.state.steady.add(self.state.time, qs);
         self.state.truncation.add(self.state.time, qs);
         if self.state.time >= self.params.cfg.settings.numerics.stats_start {
