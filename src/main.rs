@@ -343,6 +343,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
             let warm = |s: &Scene| -> anyhow::Result<Option<saltus_solvers::WarmStart>> {
                 let Some(from) = &warm_start else { return Ok(None) };
+                if from.join(saltus::seeds::FILE).is_file() {
+                    anyhow::bail!(
+                        "--warm-start {}: the developed states of several seeds start a run of as many seeds (--seeds N), one each; a single run starts from one of its seed_<k>/ folders",
+                        from.display()
+                    );
+                }
                 match saltus::runner::warm_state(s, from).map_err(|e| anyhow::anyhow!("--warm-start: {e:#}"))? {
                     Ok(w) => Ok(Some(w)),
                     Err(why) => anyhow::bail!("--warm-start {}: {why}", from.display()),
@@ -353,10 +359,16 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     saltus::errln!("warning: {e:#}; an interrupt ends the runs without writing their outputs");
                 }
                 let base = Scene::from_file_with_closures(&scene, &set, closures.as_deref())?;
-                let settings =
-                    saltus::runner::RunSettings { restart, log_every: None, max_wall, warm_start: warm(&base)? };
+                // a folder of several seeds' developed states starts each seed from its own
+                let bank = match &warm_start {
+                    Some(from) => saltus::seeds::warm_bank(&base, from)
+                        .map_err(|e| anyhow::anyhow!("--warm-start {}: {e:#}", from.display()))?,
+                    None => None,
+                };
+                let single = if bank.is_some() { None } else { warm(&base)? };
+                let settings = saltus::runner::RunSettings { restart, log_every: None, max_wall, warm_start: single };
                 let out = out.unwrap_or_else(|| saltus::runner::default_out(&base));
-                let report = saltus::seeds::run_seeds(&scene, &set, closures.as_deref(), n, &out, &settings)?;
+                let report = saltus::seeds::run_seeds(&scene, &set, closures.as_deref(), n, &out, &settings, bank)?;
                 if !quiet {
                     outln!("{}\noutputs: {}", report.text(), report.file.display());
                 }

@@ -308,6 +308,41 @@ impl SeedsReport {
     }
 }
 
+/// The pooled answer's file in the output folder of a run of several seeds.
+pub const FILE: &str = "seeds.json";
+
+/// The developed states of a run of several seeds in `from` (its `seeds.json` and its
+/// `seed_<k>/` folders), in the order of their seeds, each checked against `scene` as a
+/// single warm start is: the beds a pooled answer starts its seeds from, one each, so that
+/// the scatter between its seeds is the scatter between beds. `Ok(None)` when `from` holds
+/// no `seeds.json`.
+pub fn warm_bank(scene: &Scene, from: &Path) -> anyhow::Result<Option<Vec<saltus_solvers::WarmStart>>> {
+    if !from.join(FILE).is_file() {
+        return Ok(None);
+    }
+    let entries = std::fs::read_dir(from).with_context(|| format!("{}: cannot read the folder", from.display()))?;
+    let mut folders: Vec<(u64, PathBuf)> = entries
+        .filter_map(|e| e.ok())
+        .filter_map(|e| {
+            let name = e.file_name().into_string().ok()?;
+            let seed = name.strip_prefix("seed_")?.parse::<u64>().ok()?;
+            e.path().is_dir().then_some((seed, e.path()))
+        })
+        .collect();
+    folders.sort();
+    if folders.is_empty() {
+        bail!("{}: a seeds.json without seed_<k>/ folders", from.display());
+    }
+    let mut bank = Vec::with_capacity(folders.len());
+    for (_, dir) in folders {
+        match runner::warm_state(scene, &dir)? {
+            Ok(w) => bank.push(w),
+            Err(why) => bail!("{}: {why}", dir.display()),
+        }
+    }
+    Ok(Some(bank))
+}
+
 /// Run `n` seeds of the DEM scene `file` (with `set` and `closures` as `saltus run` takes
 /// them) into `out/seed_<k>/`, k = the scene's seed .. seed + n - 1, in parallel, then
 /// write `out/seeds.json`. `settings` apply to every seed (no `--restart`).
@@ -318,9 +353,16 @@ pub fn run_seeds(
     n: usize,
     out: &Path,
     settings: &RunSettings,
+    bank: Option<Vec<saltus_solvers::WarmStart>>,
 ) -> anyhow::Result<SeedsReport> {
     if n == 0 || n > MAX_SEEDS {
         bail!("--seeds {n}: must be an integer in [1, {MAX_SEEDS}]");
+    }
+    if let Some(b) = bank.as_ref().filter(|b| b.len() < n) {
+        bail!(
+            "--seeds {n} --warm-start: {n} seeds start from {n} developed states, one each, and the folder holds {}",
+            b.len()
+        );
     }
     if settings.restart.is_some() {
         bail!("--seeds: a run of several seeds starts from its scene, not from a checkpoint (--restart)");
@@ -350,13 +392,19 @@ pub fn run_seeds(
     }
     std::fs::create_dir_all(out).with_context(|| format!("{}: cannot create the folder", out.display()))?;
     let pool = target.map(|t| Pool::new(n, t));
-    let seed_settings = RunSettings { log_every: None, ..settings.clone() };
+    let seed_settings: Vec<RunSettings> = (0..n)
+        .map(|i| RunSettings {
+            log_every: None,
+            warm_start: bank.as_ref().map_or_else(|| settings.warm_start.clone(), |b| Some(b[i].clone())),
+            ..settings.clone()
+        })
+        .collect();
     let runs: Vec<SeedRun> = std::thread::scope(|sc| {
         let handles: Vec<_> = scenes
             .iter()
             .enumerate()
             .map(|(i, (seed, scene))| {
-                let (pool, seed_settings) = (pool.as_ref(), &seed_settings);
+                let (pool, seed_settings) = (pool.as_ref(), &seed_settings[i]);
                 sc.spawn(move || {
                     let dir = out.join(format!("seed_{seed}"));
                     let bar = runner::progress_bar(false);
@@ -409,7 +457,7 @@ pub fn run_seeds(
         (q != 0.0 && q.is_finite()).then(|| qs / q)
     });
     let qs_star = pooled.zip(scale).map(|(p, k)| (p.mean * k, p.stderr * k));
-    let file_out = out.join("seeds.json");
+    let file_out = out.join(FILE);
     let report = SeedsReport { runs, pooled, qs_star, target_error: target, file: file_out.clone() };
     let rows = report
         .runs

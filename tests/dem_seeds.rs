@@ -91,3 +91,34 @@ fn seeds_out_of_range_an_eulerian_scene_or_a_restart_are_refused() {
     let bad = assert_clean_failure(&saltus(&["run", scene().to_str().unwrap(), "--seeds", "two"]));
     assert!(bad.contains("--seeds"), "{bad}");
 }
+
+/// `--seeds N --warm-start BANK` where BANK is the output of a run of N seeds or more: each
+/// seed starts from its own parent's bed (the first row's Shields number, read off the
+/// carried column, is that parent's last), so that the pooled answer's scatter is one
+/// between beds; fewer parents than seeds, or a single run from such a folder, are refused.
+#[test]
+fn seeds_from_a_bank_of_developed_states_start_each_from_its_own() {
+    let bank = tmp_dir("seeds_bank");
+    let short = ["solver.lagrangian.end_time=0.05"];
+    let o = run(&bank, &["--seeds", "2"], &short);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let answer = tmp_dir("seeds_from_bank");
+    let o = run(&answer, &["--seeds", "2", "--warm-start", bank.to_str().unwrap()], &short);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows = |dir: &Path| {
+        let (h, rows) = read_table(&dir.join("timeseries.csv"));
+        let v = |r: &[String]| cell(&h, r, "shields").parse::<f64>().unwrap();
+        (v(&rows[0]), v(rows.last().unwrap()))
+    };
+    let (p3, p4) = (rows(&bank.join("seed_3")).1, rows(&bank.join("seed_4")).1);
+    let (c3, c4) = (rows(&answer.join("seed_3")).0, rows(&answer.join("seed_4")).0);
+    assert!(p3 > 0.0 && p4 > 0.0 && p3 != p4, "two beds: {p3} {p4}");
+    assert!((c3 - p3).abs() <= 1e-12 * p3 && (c4 - p4).abs() <= 1e-12 * p4, "{c3} {c4} from {p3} {p4}");
+
+    let o = run(&tmp_dir("seeds_bank_short"), &["--seeds", "3", "--warm-start", bank.to_str().unwrap()], &short);
+    let e = stderr(&o);
+    assert!(!o.status.success() && e.contains("3 developed states") && e.contains("holds 2"), "{e}");
+    let o = run(&tmp_dir("seeds_bank_single"), &["--warm-start", bank.to_str().unwrap()], &short);
+    let e = stderr(&o);
+    assert!(!o.status.success() && e.contains("--seeds N") && e.contains("seed_<k>"), "{e}");
+}
