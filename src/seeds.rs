@@ -375,6 +375,13 @@ pub fn run_seeds(
             base.solver.kind.name()
         );
     }
+    let draws = base.closures.fluctuation.as_ref().is_some_and(|f| f.is_active());
+    if n > 1 && bank.is_none() && !draws && matches!(settings.warm_start, Some(saltus_solvers::WarmStart::State(_))) {
+        bail!(
+            "{}: --seeds {n} --warm-start: the scene draws no random numbers after its deposition (no active closures.fluctuation), so {n} seeds from one developed state are one run {n} times; start them from as many developed states (--warm-start the output of a run of {n} seeds) or from rest",
+            file.display()
+        );
+    }
     let target = base.solver.lagrangian.target_error;
     let mut scenes = Vec::with_capacity(n);
     for k in 0..n as u64 {

@@ -95,7 +95,8 @@ fn seeds_out_of_range_an_eulerian_scene_or_a_restart_are_refused() {
 /// `--seeds N --warm-start BANK` where BANK is the output of a run of N seeds or more: each
 /// seed starts from its own parent's bed (the first row's Shields number, read off the
 /// carried column, is that parent's last), so that the pooled answer's scatter is one
-/// between beds; fewer parents than seeds, or a single run from such a folder, are refused.
+/// between beds; fewer parents than seeds, a single run from such a folder, and seeds of a
+/// scene without random draws from one developed state are refused.
 #[test]
 fn seeds_from_a_bank_of_developed_states_start_each_from_its_own() {
     let bank = tmp_dir("seeds_bank");
@@ -121,4 +122,10 @@ fn seeds_from_a_bank_of_developed_states_start_each_from_its_own() {
     let o = run(&tmp_dir("seeds_bank_single"), &["--warm-start", bank.to_str().unwrap()], &short);
     let e = stderr(&o);
     assert!(!o.status.success() && e.contains("--seeds N") && e.contains("seed_<k>"), "{e}");
+    // without a fluctuation closure nothing random is left after the deposition: seeds from
+    // one developed state would be one run twice
+    let one = bank.join("seed_3");
+    let o = run(&tmp_dir("seeds_one_state"), &["--seeds", "2", "--warm-start", one.to_str().unwrap()], &short);
+    let e = stderr(&o);
+    assert!(!o.status.success() && e.contains("no random numbers") && e.contains("closures.fluctuation"), "{e}");
 }
