@@ -14,7 +14,7 @@ use saltus_core::scene::Scene;
 use saltus_solvers::run::{Clock, Control, Phase};
 use saltus_solvers::{Ending, Observer, Progress, RunReport, Stepper};
 
-use crate::plot::{self, Reference, RUN_PANELS};
+use crate::figures::profiles::{draw_profiles, Reference, RUN_PANELS};
 use crate::table::Table;
 
 /// File name of the profile figure written next to the solver's outputs.
@@ -405,7 +405,7 @@ pub fn run_scene_observed(
             None
         }
     };
-    let phase_figures = crate::phase_plot::draw(out, &scene.label()).unwrap_or_else(|e| {
+    let phase_figures = crate::figures::phases::draw(out, &scene.label()).unwrap_or_else(|e| {
         warnings.push(format!("{}: cannot draw the phase averages: {e:#}", out.display()));
         Vec::new()
     });
@@ -451,7 +451,7 @@ fn draw_run(
         _ => format!("{name}: {} at t = {t} s, no transport measured", s.ending),
     };
     let reference: Vec<Reference> = reference.iter().map(|(label, table)| Reference { label, table }).collect();
-    plot::draw_profiles(&title, &RUN_PANELS, &[(name, &r.profiles)], &reference, png)
+    draw_profiles(&title, &RUN_PANELS, &[(name, &r.profiles)], &reference, png)
 }
 
 /// The scene's reference data (`[reference]` or `[[reference]]`): per file a legend label

@@ -24,7 +24,7 @@ use saltus_solvers::bed_aligned::interpolate;
 use saltus_solvers::{Profiles, Summary};
 
 use super::spec::{key_error, Calibration};
-use crate::precision::{moving_rows, prepared};
+use crate::compare::precision::{moving_rows, prepared};
 use crate::table::Table;
 
 /// One profile term of the reference.

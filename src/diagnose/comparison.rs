@@ -8,7 +8,7 @@ use anyhow::Context;
 use plotters::prelude::SeriesLabelPosition;
 use saltus_solvers::Profiles;
 
-use crate::plot::{draw_profiles, Panel, Reference};
+use crate::figures::profiles::{draw_profiles, Panel, Reference};
 use crate::table::Table;
 
 /// A closure's prediction of one quantity against its measured value, over the usable
