@@ -44,6 +44,7 @@ pub mod eval;
 pub mod figures;
 pub mod listing;
 pub mod plot;
+pub mod run_files;
 pub mod runner;
 pub mod seeds;
 pub mod sweep;

@@ -298,7 +298,7 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Calibration> {
     };
     for (i, run) in reference.runs.iter_mut().enumerate() {
         *run = folder.join(&*run);
-        if !run.join("profiles.csv").is_file() {
+        if !run.join(crate::run_files::PROFILES).is_file() {
             return Err(key_error(
                 path,
                 format!("reference.runs[{i}]"),
