@@ -5,6 +5,8 @@ use std::path::Path;
 
 use anyhow::bail;
 use plotters::prelude::*;
+// the legend corner of a panel, for the panels that callers build
+pub use plotters::prelude::SeriesLabelPosition;
 use saltus_solvers::Profiles;
 
 use super::{canvas, circle_key, color, legend, line_key, triangle_key, Area, PANEL};
