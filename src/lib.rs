@@ -1,6 +1,8 @@
-//! The `saltus` command-line program's library: closure listing, evaluation of one closure
-//! on a CSV, closure comparison plots, the run driver and scene comparisons. No physics
-//! lives here: every number comes from a closure or a solver.
+//! The `saltus` command-line program's library, one module per command (closure listing,
+//! evaluation of one closure on a CSV, closure plots, scene checks, the run driver, seed
+//! ensembles, comparisons, sweeps, calibrations, diagnoses), the figures they all draw
+//! ([`figures`]) and the reading of a run's folder ([`run_files`]). No physics lives here:
+//! every number comes from a closure or a solver.
 
 // Errors carry file, key and message for the user; they are built once per failed run,
 // never in a hot loop, so their size does not matter (as in saltus-solvers).
@@ -40,12 +42,11 @@ pub mod check;
 pub mod cli;
 pub mod compare;
 pub mod diagnose;
-pub mod differences;
 pub mod eval;
+pub mod figures;
 pub mod listing;
-pub mod phase_plot;
 pub mod plot;
-pub mod precision;
+pub mod run_files;
 pub mod runner;
 pub mod seeds;
 pub mod sweep;

@@ -440,7 +440,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             out!("{}", report.text_table());
             if !report.precision.is_empty() {
                 outln!("work against precision:");
-                out!("{}", saltus::precision::text(&report.precision));
+                out!("{}", saltus::compare::precision::text(&report.precision));
             }
             outln!("outputs: {}", out.display());
             outln!("table:   {}", report.table.display());

@@ -14,7 +14,8 @@ use saltus_core::scene::Scene;
 use saltus_solvers::run::{Clock, Control, Phase};
 use saltus_solvers::{Ending, Observer, Progress, RunReport, Stepper};
 
-use crate::plot::{self, Reference, RUN_PANELS};
+use crate::figures::profiles::{draw_profiles, Reference, RUN_PANELS};
+use crate::run_files;
 use crate::table::Table;
 
 /// File name of the profile figure written next to the solver's outputs.
@@ -248,9 +249,7 @@ pub fn load_checked(scene: &Path, set: &[String], closures: Option<&Path>) -> Re
 
 /// The final profiles a run wrote into `dir`.
 pub fn profiles(dir: &Path) -> anyhow::Result<saltus_solvers::Profiles> {
-    let t = Table::read_profiles_file(&dir.join("profiles.csv"))
-        .with_context(|| format!("{}: no profiles to start from", dir.display()))?;
-    Ok(saltus_solvers::Profiles { columns: t.names.into_iter().zip(t.columns).collect() })
+    run_files::profiles(dir).with_context(|| format!("{}: no profiles to start from", dir.display()))
 }
 
 /// The final state of the run in `from` that `scene` starts from (a sweep's warm start,
@@ -265,8 +264,7 @@ pub fn warm_state(scene: &Scene, from: &Path) -> anyhow::Result<Result<saltus_so
         bail!("{}: not a run folder", from.display());
     }
     let two_fluid = || {
-        let text = std::fs::read_to_string(from.join("summary.json")).ok()?;
-        let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+        let v: serde_json::Value = run_files::summary(from).ok()??;
         Some(v.get("solver")?.as_str()? == "eulerian")
     };
     match scene.solver.kind {
@@ -405,7 +403,7 @@ pub fn run_scene_observed(
             None
         }
     };
-    let phase_figures = crate::phase_plot::draw(out, &scene.label()).unwrap_or_else(|e| {
+    let phase_figures = crate::figures::phases::draw(out, &scene.label()).unwrap_or_else(|e| {
         warnings.push(format!("{}: cannot draw the phase averages: {e:#}", out.display()));
         Vec::new()
     });
@@ -451,7 +449,7 @@ fn draw_run(
         _ => format!("{name}: {} at t = {t} s, no transport measured", s.ending),
     };
     let reference: Vec<Reference> = reference.iter().map(|(label, table)| Reference { label, table }).collect();
-    plot::draw_profiles(&title, &RUN_PANELS, &[(name, &r.profiles)], &reference, png)
+    draw_profiles(&title, &RUN_PANELS, &[(name, &r.profiles)], &reference, png)
 }
 
 /// The scene's reference data (`[reference]` or `[[reference]]`): per file a legend label

@@ -11,6 +11,7 @@
 #![allow(clippy::result_large_err)]
 
 pub mod bed_aligned;
+pub mod bedload;
 pub mod column;
 pub mod eulerian;
 pub mod inputs;

@@ -24,8 +24,8 @@ use saltus_solvers::bed_aligned::interpolate;
 use saltus_solvers::{Profiles, Summary};
 
 use super::spec::{key_error, Calibration};
-use crate::precision::{moving_rows, prepared};
-use crate::table::Table;
+use crate::compare::precision::{moving_rows, prepared};
+use crate::run_files;
 
 /// One profile term of the reference.
 #[derive(Clone, Debug)]
@@ -96,14 +96,8 @@ impl Reference {
 }
 
 fn read_run(dir: &Path) -> anyhow::Result<(Profiles, Summary)> {
-    let table = Table::read_profiles_file(&dir.join("profiles.csv"))?;
-    let mut p = Profiles::default();
-    for (name, values) in table.names.iter().zip(&table.columns) {
-        p.push(name, values.clone());
-    }
-    let f = dir.join("summary.json");
-    let text = std::fs::read_to_string(&f).with_context(|| format!("{}: cannot read", f.display()))?;
-    let s: Summary = serde_json::from_str(&text).with_context(|| format!("{}: not a run summary", f.display()))?;
+    let p = run_files::profiles(dir)?;
+    let s = run_files::summary(dir)?.with_context(|| format!("{}: missing", dir.join(run_files::SUMMARY).display()))?;
     Ok((p, s))
 }
 

@@ -224,11 +224,14 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Calibration> {
     if let Some(q) = r.qs_star.filter(|q| !finite_positive(*q)) {
         return Err(key_error(path, "reference.qs_star", format!("{q}: a finite number > 0")));
     }
-    if let Some(h) = r.smooth.filter(|h| !(finite_positive(*h) && *h <= crate::precision::MAX_SMOOTH)) {
+    if let Some(h) = r.smooth.filter(|h| !(finite_positive(*h) && *h <= crate::compare::precision::MAX_SMOOTH)) {
         return Err(key_error(
             path,
             "reference.smooth",
-            format!("{h}: h_g in grain diameters, a finite number > 0 and <= {}", crate::precision::MAX_SMOOTH),
+            format!(
+                "{h}: h_g in grain diameters, a finite number > 0 and <= {}",
+                crate::compare::precision::MAX_SMOOTH
+            ),
         ));
     }
     if let Some(l) = r.correlation_length.filter(|l| !(finite_positive(*l) && *l <= 1e3)) {
@@ -295,7 +298,7 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Calibration> {
     };
     for (i, run) in reference.runs.iter_mut().enumerate() {
         *run = folder.join(&*run);
-        if !run.join("profiles.csv").is_file() {
+        if !run.join(crate::run_files::PROFILES).is_file() {
             return Err(key_error(
                 path,
                 format!("reference.runs[{i}]"),

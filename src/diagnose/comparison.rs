@@ -5,10 +5,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 
-use plotters::prelude::SeriesLabelPosition;
 use saltus_solvers::Profiles;
 
-use crate::plot::{draw_profiles, Panel, Reference};
+use crate::figures::profiles::{draw_profiles, Panel, Reference, SeriesLabelPosition};
 use crate::table::Table;
 
 /// A closure's prediction of one quantity against its measured value, over the usable

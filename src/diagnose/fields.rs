@@ -8,6 +8,7 @@ use anyhow::{anyhow, bail, Context};
 use saltus_core::scene::Scene;
 use saltus_core::LocalState;
 
+use crate::run_files;
 use crate::table::Table;
 
 /// Profiles and scene of one run's output folder.
@@ -32,14 +33,14 @@ impl RunFields {
         if !dir.is_dir() {
             bail!("{}: no such run output folder (give the folder `saltus run` wrote)", dir.display());
         }
-        let profiles_path = dir.join("profiles.csv");
-        let scene_path = dir.join("scene.toml");
+        let profiles_path = dir.join(run_files::PROFILES);
+        let scene_path = dir.join(run_files::SCENE);
         for f in [&profiles_path, &scene_path] {
             if !f.is_file() {
                 bail!("{}: missing; a run's output folder holds profiles.csv and scene.toml", f.display());
             }
         }
-        let table = Table::read_profiles_file(&profiles_path)?;
+        let table = run_files::profiles_table(dir)?;
         let scene = Scene::from_file(&scene_path).with_context(|| format!("{}: cannot load", scene_path.display()))?;
         RunFields::new(profiles_path, table, scene)
     }

@@ -5,16 +5,11 @@
 //! eta_eq is the fluid-phase shear stress over the fluid's shear rate (eq 50). In the DEM
 //! with a clear-fluid column and the drag taken over each grain's volume
 //! (`drag_velocity = "sphere_average"`), the fluid-phase stress has two parts: the column's
-//! own viscous stress tau_f = eps eta_f du_f/dz and the stress the drag exchange carries
-//! across each grain, Fry's n<s^f>^p (eq 32), which a grain spanning several slices of a
-//! linear shear exchanges between them. For a sphere of diameter d over which the slip
-//! varies linearly with the shear gamma_f, the first moment of that exchange is
-//! beta gamma_f d^2 / 20 (beta the momentum-exchange coefficient per unit volume,
-//! `beta` of the profiles: the integral of (z - z_c)^2 over a sphere is V d^2 / 20).
-//! So, cell by cell,
+//! own viscous stress tau_f and the stress the drag exchange carries across each grain,
+//! Fry's n<s^f>^p (eq 32); [`stress_ratio`] gives their sum over eta_f gamma_f, cell by
+//! cell, from the profiles' `tau_f` and `beta` (the momentum-exchange coefficient). Then
 //!
 //! ```text
-//! eta_eq / eta_f = (tau_f + beta gamma_f d^2 / 20) / (eta_f gamma_f),
 //! ln(eta_eq / eta_f) = beta_exp * (-ln(1 - phi))   (eq 51, no intercept: 1 at phi = 0)
 //! ```
 //!
@@ -25,6 +20,7 @@
 //! or whose exchange does not cross the grains (`drag_velocity = "centre"`) do not
 //! measure it: they are refused with the reason.
 
+use saltus_closures::viscosity::fry2024::stress_ratio;
 use saltus_core::scene::{DragVelocity, FluidMode, SolverKind};
 
 use super::fields::RunFields;
@@ -71,7 +67,6 @@ pub fn fit(f: &RunFields) -> Result<ViscosityFit, String> {
     let col = |name: &str| f.column(name, "the viscosity exponent").map_err(|e| e.to_string());
     let (z, phi, u_f, tau_f, beta) = (col("z")?, col("phi")?, col("u_f")?, col("tau_f")?, col("beta")?);
     let gamma = saltus_solvers::output::profile_gradient(z, u_f);
-    let d2 = f.d * f.d / 20.0;
     let mut x = Vec::new();
     let mut y = Vec::new();
     let mut zs = Vec::new();
@@ -80,7 +75,7 @@ pub fn fit(f: &RunFields) -> Result<ViscosityFit, String> {
         if !(phi[k] > PHI_RANGE.0 && phi[k] <= PHI_RANGE.1 && g > 0.0 && g.is_finite()) {
             continue;
         }
-        let ratio = (tau_f[k] + beta[k] * g * d2) / (f.eta_f * g);
+        let ratio = stress_ratio(tau_f[k], beta[k], g, f.d, f.eta_f);
         if ratio > 0.0 && ratio.is_finite() {
             x.push(-(1.0 - phi[k]).ln());
             y.push(ratio.ln());

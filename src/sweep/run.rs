@@ -83,7 +83,7 @@ fn starting_manifest(sweep: &Sweep, out: &Path, fresh: Manifest, resume: bool) -
     let mut m = fresh;
     for (new, old) in m.points.iter_mut().zip(old.points) {
         // a finished point is kept only with its summary on disk
-        if old.status.finished() && out.join(&old.dir).join("summary.json").is_file() {
+        if old.status.finished() && out.join(&old.dir).join(crate::run_files::SUMMARY).is_file() {
             *new = old;
         } else if old.status == Status::Interrupted {
             // it continues from its checkpoint, from the start it was given

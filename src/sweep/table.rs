@@ -56,12 +56,7 @@ impl Fields {
 
 /// Read a point's `summary.json`; `None` when it has none (not run yet).
 pub fn read_summary(dir: &Path) -> anyhow::Result<Option<Fields>> {
-    let f = dir.join("summary.json");
-    if !f.is_file() {
-        return Ok(None);
-    }
-    let text = std::fs::read_to_string(&f).with_context(|| format!("{}: cannot read", f.display()))?;
-    Ok(Some(serde_json::from_str(&text).with_context(|| format!("{}: not a summary", f.display()))?))
+    crate::run_files::summary(dir)
 }
 
 /// The status a point's summary says it ended with.

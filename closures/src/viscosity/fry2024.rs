@@ -76,6 +76,27 @@ impl Fry2024 {
     }
 }
 
+/// Apparent viscosity ratio eta_eq / eta_f of a fluid-phase stress measured in a DEM
+/// column (Fry et al. 2024 eq 50 with eq 32), the quantity the exponent of eq 51 is fitted
+/// on.
+///
+/// ```text
+/// eta_eq / eta_f = (tau_f + beta gamma_f d^2 / 20) / (eta_f gamma_f)
+/// ```
+///
+/// * `tau_f` is the column's own viscous stress eps eta_f du_f/dz, `gamma` the fluid's
+///   shear rate du_f/dz, `eta_f` the fluid's dynamic viscosity.
+/// * The second term is Fry's n<s^f>^p, the stress the drag exchange carries across each
+///   grain when the drag is taken over the grain's volume: over a sphere of diameter `d`
+///   in a linear shear the slip varies linearly, and the first moment of an exchange of
+///   coefficient `beta` (`exchange`, per unit volume) is beta gamma_f d^2 / 20, since the
+///   integral of (z - z_c)^2 over a sphere is V d^2 / 20.
+/// * Not finite where the shear vanishes: the ratio is measured only in sheared cells.
+#[inline]
+pub fn stress_ratio(tau_f: f64, exchange: f64, gamma: f64, d: f64, eta_f: f64) -> f64 {
+    (tau_f + exchange * gamma * (d * d / 20.0)) / (eta_f * gamma)
+}
+
 /// (1 - phi)^(-beta - 1), shared by the scalar and the batch path so that both agree bitwise.
 #[inline]
 fn power_law(phi: f64, beta: f64) -> f64 {
@@ -132,6 +153,17 @@ mod tests {
         assert_relative_eq!(eta_eq(0.3), 0.7f64.powf(-beta), max_relative = 1e-14);
         // the paper's direct fit of the reference case: eta_eq / eta_f = 0.5^-1.71 at phi = 0.5
         assert_relative_eq!(eta_eq(0.5), 0.5f64.powf(-1.71), max_relative = 0.04);
+    }
+
+    #[test]
+    fn stress_ratio_of_the_column_alone_and_with_the_exchange() {
+        // no exchange: the column's stress eps eta_f gamma gives the fluid fraction
+        assert_relative_eq!(stress_ratio(0.7 * 1e-3 * 3.0, 0.0, 3.0, 1e-3, 1e-3), 0.7, max_relative = 1e-15);
+        // the exchange's moment beta gamma d^2 / 20 on top: 20 * 1e-3 * 3 * 1e-6 / 20 = 3e-9
+        let (eta_f, d, gamma, beta) = (1e-3, 1e-3, 3.0, 20.0);
+        let r = stress_ratio(0.0, beta, gamma, d, eta_f);
+        assert_relative_eq!(r, beta * gamma * d * d / 20.0 / (eta_f * gamma), max_relative = 1e-15);
+        assert!(stress_ratio(0.0, beta, 0.0, d, eta_f).is_nan());
     }
 
     #[test]

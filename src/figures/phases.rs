@@ -7,13 +7,15 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Context};
-use plotters::element::ErrorBar;
-use plotters::prelude::*;
+use std::ops::DerefMut;
 
-use crate::plot::{self, Columns, Panel, COLORS, PHI_PANEL, U_P_PANEL};
-use crate::table::Table;
+use anyhow::{bail, Context};
+use plotters::prelude::*;
 use saltus_solvers::run::phases::{PHASES, PHASE_PROFILES};
+
+use super::profiles::{self, Columns, Panel, PHI_PANEL, U_P_PANEL};
+use super::{canvas, color, error_bars, legend, line_key, PAGE};
+use crate::table::Table;
 
 /// File of the transport-rate figure.
 pub const QS_FIGURE: &str = "phases.png";
@@ -133,11 +135,10 @@ fn draw_bins(bins: &[Bin], title: &str, png: &Path) -> anyhow::Result<()> {
     let curves: Vec<(String, &dyn Columns)> =
         chosen.iter().map(|&i| (format!("t/T = {:.3}", bins[i].phase), &bins[i].table as &dyn Columns)).collect();
     let caption = format!("{title}: phase-averaged profiles");
-    plot::draw_columns(&caption, &PROFILE_PANELS, &curves, &[], sheet_window(bins), png)
+    profiles::draw_columns(&caption, &PROFILE_PANELS, &curves, &[], sheet_window(bins), png)
 }
 
 fn draw_qs(t: &Table, title: &str, png: &Path) -> anyhow::Result<()> {
-    plot::register_font()?;
     let (Some(phase), Some(qs), Some(err), Some(forcing)) =
         (t.get("t_over_period"), t.get("qs"), t.get("qs_error"), t.get("forcing"))
     else {
@@ -160,12 +161,9 @@ fn draw_qs(t: &Table, title: &str, png: &Path) -> anyhow::Result<()> {
     let (f0, f1) =
         forcing.iter().copied().filter(|f| f.is_finite()).fold((0.0f64, 0.0f64), |(a, b), f| (a.min(f), b.max(f)));
     let (f0, f1) = band(f0, f1);
-    let root = BitMapBackend::new(png, (900, 560)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(format!("{title}: transport rate over a period"), ("sans-serif", 22))
-        .margin(15)
-        .x_label_area_size(45)
+    let root = canvas(png, (900, 560))?;
+    let mut chart = PAGE
+        .on(&root, &format!("{title}: transport rate over a period"))
         .y_label_area_size(80)
         .right_y_label_area_size(70)
         .build_cartesian_2d(0.0..1.0, q0..q1)?
@@ -178,7 +176,7 @@ fn draw_qs(t: &Table, title: &str, png: &Path) -> anyhow::Result<()> {
         .label_style(("sans-serif", 15))
         .draw()?;
     chart.configure_secondary_axes().y_desc("forcing").label_style(("sans-serif", 15)).draw()?;
-    let (qc, fc) = (COLORS[0], COLORS[1]);
+    let (qc, fc) = (color(0), color(1));
     let points: Vec<(f64, f64, f64)> = phase
         .iter()
         .zip(qs)
@@ -189,24 +187,16 @@ fn draw_qs(t: &Table, title: &str, png: &Path) -> anyhow::Result<()> {
     chart
         .draw_series(LineSeries::new(points.iter().map(|&(p, q, _)| (p, q)), qc.stroke_width(2)))?
         .label("q_s, phase average")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], qc.stroke_width(2)));
-    chart.draw_series(
-        points.iter().map(|&(p, q, e)| ErrorBar::new_vertical(p, q - e, q, q + e, qc.stroke_width(1), 6)),
-    )?;
+        .legend(line_key(qc, 2));
+    chart.draw_series(error_bars(points.iter().copied(), (q0, q1), qc.stroke_width(1)))?;
     chart
         .draw_secondary_series(LineSeries::new(
             phase.iter().zip(forcing).filter(|(p, f)| finite(**p) && finite(**f)).map(|(&p, &f)| (p, f)),
             fc.stroke_width(1),
         ))?
         .label("forcing (right axis)")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], fc.stroke_width(1)));
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 14))
-        .draw()?;
+        .legend(line_key(fc, 1));
+    legend(chart.deref_mut(), SeriesLabelPosition::UpperRight, 14)?;
     root.present()?;
     Ok(())
 }

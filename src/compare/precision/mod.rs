@@ -10,7 +10,7 @@
 //!   deterministic runs), so that a difference inside its bar is not resolved;
 //! * `rms_phi`, `rms_u_p`, `rms_u_f`: the RMS difference of the profile from the
 //!   reference's (the run interpolated in z onto the reference's rows, see
-//!   [`crate::differences`]) over the largest |value| of the reference profile;
+//!   [`super::differences`]) over the largest |value| of the reference profile;
 //! * `moving_rms_phi`, `moving_rms_u_p`: the RMS differences of phi and u_p, in their
 //!   units, over the reference's rows where the grains move (phi above [`MOVING_PHI`] and
 //!   u_p above [`MOVING_U_P`] times the largest u_p where phi is): the layer that carries the transport,
@@ -36,12 +36,11 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use anyhow::Context;
-use plotters::prelude::*;
 use saltus_solvers::{Profiles, RunReport};
 use serde::Deserialize;
 
-use crate::differences;
-use crate::plot::register_font;
+use super::differences;
+use crate::figures;
 use crate::table::Table;
 
 mod moving;
@@ -254,72 +253,30 @@ pub fn draw(title: &str, rows: &[Row], png: &Path) -> anyhow::Result<bool> {
         ("RMS phi / max phi", |r| r.rms[0]),
         ("RMS u_p / max u_p", |r| r.rms[1]),
     ];
-    let marks: Vec<(usize, f64, f64, &Row)> = series
+    let measures: Vec<figures::precision::Measure> = series
         .iter()
-        .enumerate()
-        .flat_map(|(k, (_, f))| {
-            rows.iter().filter_map(move |r| {
-                let (x, y) = (r.cost()?, f(r)?);
-                (x > 0.0 && y > 0.0 && x.is_finite() && y.is_finite()).then_some((k, x, y, r))
-            })
+        .map(|&(label, f)| figures::precision::Measure {
+            label,
+            marks: rows
+                .iter()
+                .filter_map(|r| {
+                    let (cost, error) = (r.cost()?, f(r)?);
+                    let drawn = cost > 0.0 && error > 0.0 && cost.is_finite() && error.is_finite();
+                    drawn.then_some(figures::precision::Mark {
+                        cost,
+                        error,
+                        bar: r.qs_star_error_bar,
+                        name: &r.variant,
+                    })
+                })
+                .collect(),
         })
         .collect();
-    if marks.is_empty() {
+    if measures.iter().all(|m| m.marks.is_empty()) {
         return Ok(false);
     }
-    register_font()?;
-    let bars = rows.iter().filter_map(|r| r.qs_star_error_bar.filter(|b| *b > 0.0));
-    let (x0, x1) = marks.iter().fold((f64::INFINITY, 0.0f64), |(a, b), m| (a.min(m.1), b.max(m.1)));
-    let (y0, y1) =
-        marks.iter().map(|m| m.2).chain(bars).fold((f64::INFINITY, 0.0f64), |(a, b), y| (a.min(y), b.max(y)));
-    let (x0, x1, y0, y1) = (x0 / 1.5, x1 * 1.5, y0 / 2.0, y1 * 2.0);
-    let root = BitMapBackend::new(png, (900, 680)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 22))
-        .margin(15)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
     let x_desc = if rows.iter().all(|r| r.cpu_time_s.is_some()) { "CPU time (s)" } else { "CPU (or wall) time (s)" };
-    chart
-        .configure_mesh()
-        .x_desc(x_desc)
-        .y_desc("error against the reference")
-        .label_style(("sans-serif", 15))
-        .draw()?;
-    let colors = [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44)];
-    for (k, (label, _)) in series.iter().enumerate() {
-        let color = colors[k];
-        let mine: Vec<_> = marks.iter().filter(|m| m.0 == k).collect();
-        if mine.is_empty() {
-            continue;
-        }
-        if k == 0 {
-            // the statistical bar: a difference inside it is not resolved
-            for m in &mine {
-                if let Some(b) = m.3.qs_star_error_bar.filter(|b| *b > 0.0) {
-                    let (lo, hi) = ((m.2 - b).max(y0), (m.2 + b).min(y1));
-                    chart.draw_series(LineSeries::new([(m.1, lo), (m.1, hi)], color.stroke_width(1)))?;
-                }
-            }
-            chart.draw_series(mine.iter().map(|m| {
-                Text::new(format!(" {}", m.3.variant), (m.1, m.2), ("sans-serif", 12).into_font().color(&BLACK))
-            }))?;
-        }
-        chart
-            .draw_series(mine.iter().map(|m| Circle::new((m.1, m.2), 4, color.filled())))?
-            .label(*label)
-            .legend(move |(x, y)| Circle::new((x + 10, y), 4, color.filled()));
-    }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 13))
-        .draw()?;
-    root.present().with_context(|| format!("{}: cannot write", png.display()))?;
+    figures::precision::draw(title, x_desc, &measures, png)?;
     Ok(true)
 }
 

@@ -122,7 +122,7 @@ pub(crate) fn prepared(p: &Profiles, h_g: f64, align: bool) -> Option<Profiles> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::precision::{rows, ReferenceSpec};
+    use crate::compare::precision::{rows, ReferenceSpec};
     use saltus_solvers::{RunReport, Summary};
 
     /// The moving-layer RMS sees only the rows where the reference's grains move: a run

@@ -13,12 +13,15 @@
 //! [[variant]]
 //! name = "as is"
 //! set = []
-//! [reference]                     # optional: work against precision (crate::precision)
+//! [reference]                     # optional: work against precision (module precision)
 //! variant = "as is"               # or data = true (the base scene's reference data)
 //! # qs_star = 2.44                # and/or a published qs*, with qs_star_stderr
 //! # smooth = 1.0                  # with a variant: Fry's eq-11 Gaussian of h_g = 1 d on the
 //! # align = true                  # moving-layer RMS, and each profile from its bed surface
 //! ```
+
+pub mod differences;
+pub mod precision;
 
 use std::collections::HashSet;
 use std::fmt::Write as _;
@@ -32,10 +35,10 @@ use saltus_core::Error;
 use saltus_solvers::RunReport;
 use serde::Deserialize;
 
-use crate::differences;
-use crate::plot::{self, Reference, COMPARE_PANELS};
-use crate::precision::{self, ReferenceSpec};
+use crate::figures::profiles::{self, Reference, COMPARE_PANELS};
+use crate::figures::register_font;
 use crate::runner;
+use precision::ReferenceSpec;
 
 /// File names written in the output folder, next to one folder per variant.
 pub const TABLE: &str = "comparison.csv";
@@ -257,7 +260,7 @@ pub struct CompareReport {
     /// warnings of the runs and the figure, each once
     pub warnings: Vec<String>,
     /// profile columns compared with the base scene's reference data (`rms_<column>` in
-    /// the table, after [`COLUMNS`]), see [`crate::differences`]
+    /// the table, after [`COLUMNS`]), see [`differences`]
     pub compared: Vec<String>,
     /// per variant, the RMS difference of each compared column (`None`: no run or no row)
     pub rms: Vec<Vec<Option<f64>>>,
@@ -394,7 +397,7 @@ fn summary_cells(s: &saltus_solvers::Summary, precise: bool) -> Vec<String> {
 /// progress bar per running variant on stderr.
 pub fn run(cmp: &Comparison, out: &Path, progress: bool) -> anyhow::Result<CompareReport> {
     std::fs::create_dir_all(out).with_context(|| format!("{}: cannot create", out.display()))?;
-    plot::register_font()?;
+    register_font()?;
     let bars =
         if progress { MultiProgress::new() } else { MultiProgress::with_draw_target(ProgressDrawTarget::hidden()) };
     let runs: Vec<VariantRun> =
@@ -496,7 +499,7 @@ pub fn run(cmp: &Comparison, out: &Path, progress: bool) -> anyhow::Result<Compa
         .collect();
     if !curves.is_empty() {
         let reference: Vec<Reference> = reference.iter().map(|(label, table)| Reference { label, table }).collect();
-        match plot::draw_profiles(&cmp.meta.name, &COMPARE_PANELS, &curves, &reference, &png) {
+        match profiles::draw_profiles(&cmp.meta.name, &COMPARE_PANELS, &curves, &reference, &png) {
             Ok(()) => report.figure = Some(png),
             Err(e) => report.warnings.push(format!("{}: cannot draw: {e:#}", png.display())),
         }
