@@ -301,8 +301,16 @@ impl KOmega {
     }
 
     /// omega_bed = S_r u*^2 / nu of eq 34 with k_s = `roughness` d.
+    ///
+    /// Below k_s^+ = 5 eq 35's S_r = (200 / k_s^+)^2 makes omega_bed = 40000 nu / k_s^2,
+    /// independent of u*: written so, a bed without shear (u* = 0, the mean driving of an
+    /// oscillatory flow) has the finite omega of the limit instead of 0 x inf.
     pub fn omega_bed(&self, u_star: f64, nu: f64, diameter: f64) -> f64 {
-        let ks_plus = self.roughness * diameter * u_star / nu;
+        let ks = self.roughness * diameter;
+        let ks_plus = ks * u_star / nu;
+        if ks_plus < 5.0 && ks > 0.0 {
+            return 40000.0 * nu / (ks * ks);
+        }
         self.s_r(ks_plus) * u_star * u_star / nu
     }
 

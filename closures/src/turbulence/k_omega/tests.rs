@@ -100,6 +100,12 @@ fn rough_wall_omega_is_eqs_32_35() {
     assert_relative_eq!(m.omega_bed(u, NU, 3e-3), s_r * u * u / NU, max_relative = 1e-12);
     let u = 2.0 * NU / 7.5e-3;
     assert_relative_eq!(m.omega_bed(u, NU, 3e-3), 1e4 * u * u / NU, max_relative = 1e-12);
+    // eq 35's smooth branch makes omega_bed = 40000 nu / k_s^2 whatever u*: a bed without
+    // shear (u* = 0, or 1e-308) has that limit, finite, not 0 x inf
+    let limit = 40000.0 * NU / (7.5e-3 * 7.5e-3);
+    for u in [0.0, 1e-308, 1e-12, u] {
+        assert_relative_eq!(m.omega_bed(u, NU, 3e-3), limit, max_relative = 1e-12);
+    }
     // eq 32: the step at phi_b = 0.55, (tanh(500 (phi - phi_b)) + 1)/2
     assert_relative_eq!(m.gamma(0.55), 0.5, max_relative = 1e-15);
     assert_relative_eq!(m.gamma(0.56), 0.5 * (5.0f64.tanh() + 1.0), max_relative = 1e-15);
