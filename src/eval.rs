@@ -7,12 +7,9 @@ use std::path::Path;
 
 use anyhow::{anyhow, bail, Context};
 use saltus_core::closure::Family;
-use saltus_core::scene::{closure_from_value, to_toml_table};
+use saltus_core::runtime::Built;
 use saltus_core::{registry, runtime};
-use saltus_core::{
-    ColumnView, Describe, DragLaw, EffectiveViscosity, Field, FlowScales, Fluctuation, GranularStress, Hindrance,
-    ParticleSlip, Turbulence, TurbulencePoint, WallFriction,
-};
+use saltus_core::{ColumnView, Describe, Field, FlowScales, ParticleSlip, TurbulencePoint};
 
 use crate::table::Table;
 
@@ -190,74 +187,12 @@ impl<'a> Rows<'a> {
     }
 }
 
-/// A closure of any scene family, built from its table and range-checked once: what
-/// `closure eval` evaluates ([`Model`]) and `closure check` examines.
-#[derive(Debug)]
-pub enum AnyClosure {
-    /// a drag law
-    Drag(Box<dyn DragLaw>),
-    /// a hindrance factor
-    Hindrance(Box<dyn Hindrance>),
-    /// an effective viscosity
-    Viscosity(Box<dyn EffectiveViscosity>),
-    /// a granular stress: a local rheology or a kinetic-theory closure
-    Granular(Box<dyn GranularStress>),
-    /// a turbulence closure
-    Turbulence(Box<dyn Turbulence>),
-    /// a fluctuation model
-    Fluctuation(Box<dyn Fluctuation>),
-    /// a side-wall friction factor
-    WallFriction(Box<dyn WallFriction>),
-}
-
-impl AnyClosure {
-    /// Build `model` (a closure table with its `type`) of `family`. Errors name `file`
-    /// and the key path under `key`.
-    pub fn build(family: Family, model: toml::Value, file: &Path, key: &str) -> anyhow::Result<AnyClosure> {
-        Ok(match family {
-            Family::Drag => AnyClosure::Drag(closure_from_value(model, family, file, key)?),
-            Family::Hindrance => AnyClosure::Hindrance(closure_from_value(model, family, file, key)?),
-            Family::Viscosity => AnyClosure::Viscosity(closure_from_value(model, family, file, key)?),
-            Family::Granular => AnyClosure::Granular(closure_from_value(model, family, file, key)?),
-            Family::Turbulence => AnyClosure::Turbulence(closure_from_value(model, family, file, key)?),
-            Family::Fluctuation => AnyClosure::Fluctuation(closure_from_value(model, family, file, key)?),
-            Family::WallFriction => AnyClosure::WallFriction(closure_from_value(model, family, file, key)?),
-        })
-    }
-
-    /// The model's name, equation, source and parameters with their values.
-    pub fn describe(&self) -> &dyn Describe {
-        match self {
-            AnyClosure::Drag(m) => m.as_ref(),
-            AnyClosure::Hindrance(m) => m.as_ref(),
-            AnyClosure::Viscosity(m) => m.as_ref(),
-            AnyClosure::Granular(m) => m.as_ref(),
-            AnyClosure::Turbulence(m) => m.as_ref(),
-            AnyClosure::Fluctuation(m) => m.as_ref(),
-            AnyClosure::WallFriction(m) => m.as_ref(),
-        }
-    }
-
-    /// The model as its TOML table (with `type`), as a scene would hold it.
-    pub fn to_toml(&self) -> Result<String, String> {
-        match self {
-            AnyClosure::Drag(m) => to_toml_table(m),
-            AnyClosure::Hindrance(m) => to_toml_table(m),
-            AnyClosure::Viscosity(m) => to_toml_table(m),
-            AnyClosure::Granular(m) => to_toml_table(m),
-            AnyClosure::Turbulence(m) => to_toml_table(m),
-            AnyClosure::Fluctuation(m) => to_toml_table(m),
-            AnyClosure::WallFriction(m) => to_toml_table(m),
-        }
-    }
-}
-
 /// One closure of an [`EvalFamily`], built from its TOML table and checked once, then
 /// evaluated on any number of input tables ([`Model::outputs`]).
 #[derive(Debug)]
 pub struct Model {
     family: EvalFamily,
-    kind: AnyClosure,
+    kind: Built,
 }
 
 impl Model {
@@ -266,8 +201,8 @@ impl Model {
     pub fn build(family: EvalFamily, model: toml::Value, file: &Path, key: &str) -> anyhow::Result<Model> {
         let f = family.scene_family().ok_or_else(|| anyhow!("unknown family"))?;
         let origin = file.display();
-        let kind = AnyClosure::build(f, model, file, key)?;
-        if let AnyClosure::Granular(m) = &kind {
+        let kind = Built::from_value(f, model, file, key)?;
+        if let Built::Granular(m) = &kind {
             if family == EvalFamily::Granular && m.as_local().is_none() {
                 bail!(
                     "{origin}: `{}` is not a local rheology; evaluate its coefficients with --family kinetic_theory",
@@ -310,14 +245,14 @@ impl Model {
         let origin = rows.origin;
         let mut out = Table::default();
         match &self.kind {
-            AnyClosure::Drag(m) => {
+            Built::Drag(m) => {
                 let re = need(input, "re_p", family, origin)?;
                 check_reynolds(re, rows)?;
                 let mut cd = vec![0.0; n];
                 m.cd_batch(re, &mut cd);
                 out.push("cd", cd);
             }
-            AnyClosure::Hindrance(m) => {
+            Built::Hindrance(m) => {
                 let phi = need(input, "phi", family, origin)?;
                 let re = need(input, "re_p", family, origin)?;
                 check_fraction(phi, rows)?;
@@ -326,14 +261,14 @@ impl Model {
                 m.factor_batch(phi, re, &mut f);
                 out.push("factor", f);
             }
-            AnyClosure::Viscosity(m) => {
+            Built::Viscosity(m) => {
                 let phi = need(input, "phi", family, origin)?;
                 check_fraction(phi, rows)?;
                 let mut r = vec![0.0; n];
                 m.ratio_batch(phi, &mut r);
                 out.push("nu_ratio", r);
             }
-            AnyClosure::Granular(m) if family != EvalFamily::KineticTheory => {
+            Built::Granular(m) if family != EvalFamily::KineticTheory => {
                 let local = m.as_local().ok_or_else(|| anyhow!("`{}` is not a local rheology", m.name()))?;
                 let x = need(input, local.control_name(), family, origin)?;
                 let mut mu = vec![0.0; n];
@@ -342,7 +277,7 @@ impl Model {
                 out.push("mu", mu);
                 out.push("phi", phi);
             }
-            AnyClosure::Granular(m) => {
+            Built::Granular(m) => {
                 let kt = m.as_kinetic().ok_or_else(|| anyhow!("`{}` is not a kinetic-theory closure", m.name()))?;
                 let phi = need(input, "phi", family, origin)?;
                 check_fraction(phi, rows)?;
@@ -355,7 +290,7 @@ impl Model {
                 out.push("f4", c.iter().map(|c| c.f4).collect());
                 out.push("e_eff", c.iter().map(|c| c.e_eff).collect());
             }
-            AnyClosure::Turbulence(m) => {
+            Built::Turbulence(m) => {
                 let z = need(input, "z", family, origin)?;
                 let phi = need(input, "phi", family, origin)?;
                 let dudz = need(input, "dudz", family, origin)?;
@@ -373,7 +308,7 @@ impl Model {
                 out.push("l_m", lm);
                 out.push("nu_t", nut);
             }
-            AnyClosure::Fluctuation(m) => {
+            Built::Fluctuation(m) => {
                 for f in m.needs().iter() {
                     let col = match f {
                         Field::Tke => "k",
@@ -409,7 +344,7 @@ impl Model {
                     out.push(name, c);
                 }
             }
-            AnyClosure::WallFriction(m) => {
+            Built::WallFriction(m) => {
                 let re = need(input, "re", family, origin)?;
                 check_non_negative("re", re, rows)?;
                 let mut po = re.to_vec();

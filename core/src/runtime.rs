@@ -296,7 +296,10 @@ impl RuntimeLimit {
     }
 }
 
-/// A run-time closure as built: the family trait object.
+/// A closure of any family as built: the family trait object. A scene's closure table
+/// ([`Built::from_value`]) and a run-time model (`RuntimeModel`'s `build`) both give one;
+/// `closure eval` and `closure check` work on it.
+#[derive(Debug)]
 pub enum Built {
     /// a drag law
     Drag(Box<dyn DragLaw>),
@@ -312,6 +315,21 @@ pub enum Built {
     Turbulence(Box<dyn Turbulence>),
     /// a fluctuation model
     Fluctuation(Box<dyn Fluctuation>),
+}
+
+impl Built {
+    /// The model's name, equation, source and parameters with their values.
+    pub fn describe(&self) -> &dyn Describe {
+        match self {
+            Built::Drag(m) => m.as_ref(),
+            Built::Hindrance(m) => m.as_ref(),
+            Built::Viscosity(m) => m.as_ref(),
+            Built::WallFriction(m) => m.as_ref(),
+            Built::Granular(m) => m.as_ref(),
+            Built::Turbulence(m) => m.as_ref(),
+            Built::Fluctuation(m) => m.as_ref(),
+        }
+    }
 }
 
 /// A family trait object that a [`Built`] may hold.

@@ -27,7 +27,7 @@ use saltus_core::closure::Family;
 use saltus_core::param::{number, Bound};
 use saltus_core::{ColumnView, FlowScales, Limit, Param, ParticleSlip, Turbulence, TurbulencePoint};
 
-use crate::eval::AnyClosure;
+use saltus_core::runtime::Built;
 
 mod evaluate;
 mod limits;
@@ -132,11 +132,8 @@ impl std::fmt::Display for ChecksFailed {
 
 impl std::error::Error for ChecksFailed {}
 
-/// A model of any family, built from its table as `--model` gives it.
-type Built = AnyClosure;
-
 fn built(family: Family, table: &toml::Table) -> anyhow::Result<Built> {
-    AnyClosure::build(family, toml::Value::Table(table.clone()), Path::new("--model"), "model")
+    Ok(Built::from_value(family, toml::Value::Table(table.clone()), Path::new("--model"), "model")?)
 }
 
 /// Run every check on `model` (a closure table with its `type`) of `family`. An error is

@@ -71,6 +71,38 @@ where
     closure_with(value, family, file, key, |_, _| ())
 }
 
+impl runtime::Built {
+    /// Build `value` (a closure table with its `type`) of `family`, as
+    /// [`closure_from_value`] does for that family's trait. Errors name `file` and the key
+    /// path under `key`.
+    pub fn from_value(family: Family, value: toml::Value, file: &Path, key: &str) -> Result<runtime::Built> {
+        use runtime::Built;
+        Ok(match family {
+            Family::Drag => Built::Drag(closure_from_value(value, family, file, key)?),
+            Family::Hindrance => Built::Hindrance(closure_from_value(value, family, file, key)?),
+            Family::Viscosity => Built::Viscosity(closure_from_value(value, family, file, key)?),
+            Family::Granular => Built::Granular(closure_from_value(value, family, file, key)?),
+            Family::Turbulence => Built::Turbulence(closure_from_value(value, family, file, key)?),
+            Family::Fluctuation => Built::Fluctuation(closure_from_value(value, family, file, key)?),
+            Family::WallFriction => Built::WallFriction(closure_from_value(value, family, file, key)?),
+        })
+    }
+
+    /// The model as its TOML table (with `type`), as a scene would hold it.
+    pub fn to_toml(&self) -> std::result::Result<String, String> {
+        use runtime::Built;
+        match self {
+            Built::Drag(m) => super::to_toml_table(m),
+            Built::Hindrance(m) => super::to_toml_table(m),
+            Built::Viscosity(m) => super::to_toml_table(m),
+            Built::WallFriction(m) => super::to_toml_table(m),
+            Built::Granular(m) => super::to_toml_table(m),
+            Built::Turbulence(m) => super::to_toml_table(m),
+            Built::Fluctuation(m) => super::to_toml_table(m),
+        }
+    }
+}
+
 /// A granular closure table found at key path `key` of `file`, built as a scene builds
 /// `[closures.granular]`: what it does not set (restitution, friction) is inherited from
 /// `particles` before the range check.
