@@ -14,6 +14,7 @@ use saltus_solvers::output::profile_gradient;
 
 use super::comparison::Comparison;
 use super::fields::RunFields;
+use crate::least_squares::LeastSquares;
 
 /// What a kinetic closure's comparisons found besides the comparisons: the coefficient a
 /// of eq 3.2 fitted to the extracted g0 over all the cells used and over three bands of
@@ -58,21 +59,20 @@ pub struct BandFit {
 }
 
 /// Relative least squares of y = a x through the origin over `points` (x, y) and the
-/// standard error of a: (a, stderr, n).
-fn slope(points: impl Iterator<Item = (f64, f64)> + Clone) -> (f64, f64, usize) {
-    let (mut sxy, mut sxx, mut n) = (0.0, 0.0, 0usize);
-    for (x, y) in points.clone() {
-        sxy += x * y;
-        sxx += x * x;
-        n += 1;
+/// standard error of a, sqrt(SSR / (n - 1) / Sxx): (a, stderr, n), NaN for what the points
+/// do not determine (a without cells or with every x = 0, the error below two cells).
+fn slope(points: impl Iterator<Item = (f64, f64)>) -> (f64, f64, usize) {
+    let (x, y): (Vec<f64>, Vec<f64>) = points.unzip();
+    let n = x.len();
+    let fit = LeastSquares::new(&["a"], &[0.0], n)
+        .min_points(1)
+        .jacobian(|_| Some(x.clone()))
+        .linear()
+        .solve(|p| Some(x.iter().zip(&y).map(|(x, y)| p[0] * x - y).collect()));
+    match fit {
+        Ok(s) => (s.params[0], s.stderr_independent[0], n),
+        Err(_) => (f64::NAN, f64::NAN, n),
     }
-    if sxx <= 0.0 {
-        return (f64::NAN, f64::NAN, n);
-    }
-    let a = sxy / sxx;
-    let ssr: f64 = points.map(|(x, y)| (y - a * x).powi(2)).sum();
-    let se = if n > 1 { (ssr / (n - 1) as f64 / sxx).sqrt() } else { f64::NAN };
-    (a, se, n)
 }
 
 /// A cell's state for the kinetic comparisons.
