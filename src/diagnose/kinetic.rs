@@ -275,5 +275,27 @@ mod tests {
         assert!((fit - 2.0).abs() < 1e-15 && se < 1e-15);
         assert!(slope([(1.0, 2.0)].into_iter()).1.is_nan());
         assert!(slope(std::iter::empty()).0.is_nan());
+        // every x = 0: no slope
+        assert!(slope([(0.0, 1.0), (0.0, 2.0)].into_iter()).0.is_nan());
+    }
+
+    /// Scattered cells: the slope and its error are the closed form through the origin,
+    /// a = Sxy / Sxx and sqrt(SSR / (n - 1) / Sxx), to round-off.
+    #[test]
+    fn the_slope_is_the_closed_form_through_the_origin() {
+        let points: Vec<(f64, f64)> = (1..=40)
+            .map(|k| {
+                let x = 0.013 * k as f64 + 0.002 * ((k * 7 % 11) as f64);
+                (x, 2.7 * x + 0.01 * ((k * 5 % 13) as f64 - 6.0))
+            })
+            .collect();
+        let sxy: f64 = points.iter().map(|(x, y)| x * y).sum();
+        let sxx: f64 = points.iter().map(|(x, _)| x * x).sum();
+        let a = sxy / sxx;
+        let ssr: f64 = points.iter().map(|(x, y)| (y - a * x).powi(2)).sum();
+        let se = (ssr / 39.0 / sxx).sqrt();
+        let (fit, fit_se, n) = slope(points.iter().copied());
+        assert_eq!(n, 40);
+        assert!((fit - a).abs() <= 1e-14 * a && (fit_se - se).abs() <= 1e-12 * se, "{fit} {a} {fit_se} {se}");
     }
 }
