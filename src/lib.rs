@@ -44,6 +44,7 @@ pub mod compare;
 pub mod diagnose;
 pub mod eval;
 pub mod figures;
+pub mod least_squares;
 pub mod listing;
 pub mod plot;
 pub mod run_files;

@@ -19,7 +19,7 @@ use saltus_core::scene::{granular_from_value, to_toml_table, Particles};
 use saltus_core::GranularStress;
 
 use super::comparison::Comparison;
-use super::least_squares::{self, Solution};
+use crate::least_squares::{self, Solution};
 
 /// The cells a fit uses besides those of its comparison.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -230,7 +230,7 @@ pub fn fit_closure(
                 }
             }
             q.attempts.push(Attempt { params: names.iter().map(|s| s.to_string()).collect(), result });
-            if ok || cells.len() < least_squares::min_cells(1) {
+            if ok || cells.len() < least_squares::min_points(1) {
                 break;
             }
         }
@@ -334,7 +334,7 @@ pub fn fitted_toml(
         let mut t = toml::Table::new();
         t.insert("quantity".into(), q.quantity.clone().into());
         t.insert("control".into(), q.control.clone().into());
-        t.insert("cells".into(), (s.cells as i64).into());
+        t.insert("cells".into(), (s.points as i64).into());
         t.insert("x_min".into(), q.x_range.0.into());
         t.insert("x_max".into(), q.x_range.1.into());
         t.insert("z_min".into(), q.z_range.0.into());
@@ -361,7 +361,7 @@ pub fn fitted_toml(
             let mut t = toml::Table::new();
             t.insert("quantity".into(), super::viscosity::QUANTITY.into());
             t.insert("control".into(), "phi".into());
-            t.insert("cells".into(), (s.cells as i64).into());
+            t.insert("cells".into(), (s.points as i64).into());
             t.insert("x_min".into(), super::viscosity::PHI_RANGE.0.into());
             t.insert("x_max".into(), super::viscosity::PHI_RANGE.1.into());
             t.insert("z_min".into(), v.z_range.0.into());

@@ -14,6 +14,7 @@ use saltus_solvers::output::profile_gradient;
 
 use super::comparison::Comparison;
 use super::fields::RunFields;
+use crate::least_squares::LeastSquares;
 
 /// What a kinetic closure's comparisons found besides the comparisons: the coefficient a
 /// of eq 3.2 fitted to the extracted g0 over all the cells used and over three bands of
@@ -58,21 +59,20 @@ pub struct BandFit {
 }
 
 /// Relative least squares of y = a x through the origin over `points` (x, y) and the
-/// standard error of a: (a, stderr, n).
-fn slope(points: impl Iterator<Item = (f64, f64)> + Clone) -> (f64, f64, usize) {
-    let (mut sxy, mut sxx, mut n) = (0.0, 0.0, 0usize);
-    for (x, y) in points.clone() {
-        sxy += x * y;
-        sxx += x * x;
-        n += 1;
+/// standard error of a, sqrt(SSR / (n - 1) / Sxx): (a, stderr, n), NaN for what the points
+/// do not determine (a without cells or with every x = 0, the error below two cells).
+fn slope(points: impl Iterator<Item = (f64, f64)>) -> (f64, f64, usize) {
+    let (x, y): (Vec<f64>, Vec<f64>) = points.unzip();
+    let n = x.len();
+    let fit = LeastSquares::new(&["a"], &[0.0], n)
+        .min_points(1)
+        .jacobian(|_| Some(x.clone()))
+        .linear()
+        .solve(|p| Some(x.iter().zip(&y).map(|(x, y)| p[0] * x - y).collect()));
+    match fit {
+        Ok(s) => (s.params[0], s.stderr_independent[0], n),
+        Err(_) => (f64::NAN, f64::NAN, n),
     }
-    if sxx <= 0.0 {
-        return (f64::NAN, f64::NAN, n);
-    }
-    let a = sxy / sxx;
-    let ssr: f64 = points.map(|(x, y)| (y - a * x).powi(2)).sum();
-    let se = if n > 1 { (ssr / (n - 1) as f64 / sxx).sqrt() } else { f64::NAN };
-    (a, se, n)
 }
 
 /// A cell's state for the kinetic comparisons.
@@ -275,5 +275,27 @@ mod tests {
         assert!((fit - 2.0).abs() < 1e-15 && se < 1e-15);
         assert!(slope([(1.0, 2.0)].into_iter()).1.is_nan());
         assert!(slope(std::iter::empty()).0.is_nan());
+        // every x = 0: no slope
+        assert!(slope([(0.0, 1.0), (0.0, 2.0)].into_iter()).0.is_nan());
+    }
+
+    /// Scattered cells: the slope and its error are the closed form through the origin,
+    /// a = Sxy / Sxx and sqrt(SSR / (n - 1) / Sxx), to round-off.
+    #[test]
+    fn the_slope_is_the_closed_form_through_the_origin() {
+        let points: Vec<(f64, f64)> = (1..=40)
+            .map(|k| {
+                let x = 0.013 * k as f64 + 0.002 * ((k * 7 % 11) as f64);
+                (x, 2.7 * x + 0.01 * ((k * 5 % 13) as f64 - 6.0))
+            })
+            .collect();
+        let sxy: f64 = points.iter().map(|(x, y)| x * y).sum();
+        let sxx: f64 = points.iter().map(|(x, _)| x * x).sum();
+        let a = sxy / sxx;
+        let ssr: f64 = points.iter().map(|(x, y)| (y - a * x).powi(2)).sum();
+        let se = (ssr / 39.0 / sxx).sqrt();
+        let (fit, fit_se, n) = slope(points.iter().copied());
+        assert_eq!(n, 40);
+        assert!((fit - a).abs() <= 1e-14 * a && (fit_se - se).abs() <= 1e-12 * se, "{fit} {a} {fit_se} {se}");
     }
 }

@@ -10,7 +10,6 @@ pub mod comparison;
 pub mod fields;
 pub mod fit;
 pub mod kinetic;
-pub mod least_squares;
 pub mod local;
 pub mod viscosity;
 
@@ -390,7 +389,7 @@ impl Diagnosis {
                             .map(|a| match &a.result {
                                 Ok(s) => json!({
                                     "params": a.params, "values": nums(&s.params), "stderr": nums(&s.stderr),
-                                    "stderr_independent": nums(&s.stderr_independent), "cells": s.cells,
+                                    "stderr_independent": nums(&s.stderr_independent), "cells": s.points,
                                     "residual_rms": num(s.rms), "residual_lag1": num(s.r1),
                                 }),
                                 Err(reason) => json!({ "params": a.params, "reason": reason }),
@@ -416,7 +415,7 @@ impl Diagnosis {
             "closures": closures, "viscosity": match &self.viscosity_fit {
                 Ok(v) => json!({
                     "beta0": v.solution.params[0], "stderr": v.solution.stderr[0],
-                    "stderr_independent": v.solution.stderr_independent[0], "cells": v.solution.cells,
+                    "stderr_independent": v.solution.stderr_independent[0], "cells": v.solution.points,
                 }),
                 Err(reason) => json!({ "unsupported": reason }),
             },
@@ -461,7 +460,7 @@ impl Diagnosis {
                                 f.label,
                                 q.quantity,
                                 values.join(", "),
-                                sol.cells,
+                                sol.points,
                                 q.control,
                                 figure(q.x_range.0),
                                 figure(q.x_range.1),
@@ -490,7 +489,7 @@ impl Diagnosis {
                     figure(sol.params[0]),
                     figure(sol.stderr[0]),
                     figure(sol.stderr_independent[0]),
-                    sol.cells,
+                    sol.points,
                     viscosity::PHI_RANGE.0,
                     viscosity::PHI_RANGE.1,
                     figure(sol.rms)

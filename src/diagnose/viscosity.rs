@@ -24,7 +24,7 @@ use saltus_closures::viscosity::fry2024::stress_ratio;
 use saltus_core::scene::{DragVelocity, FluidMode, SolverKind};
 
 use super::fields::RunFields;
-use super::least_squares;
+use crate::least_squares;
 
 /// The name of the fit in tables and messages.
 pub const QUANTITY: &str = "viscosity exponent (Fry et al. 2024 eqs 51-52)";
@@ -143,7 +143,7 @@ mod tests {
             let f = fit(&fields(scene(&[]), b)).unwrap();
             assert!((f.solution.params[0] - b).abs() < 1e-9, "{b}: {:?}", f.solution.params);
             // the cells of 0.05 < phi <= 0.5 only
-            assert_eq!(f.solution.cells, 46, "{:?}", f.solution);
+            assert_eq!(f.solution.points, 46, "{:?}", f.solution);
             assert!(f.solution.rms < 1e-9);
         }
     }

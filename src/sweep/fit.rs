@@ -4,7 +4,8 @@
 //!
 //! For a given theta_c the model is linear in a, so the fit scans theta_c below the
 //! smallest fitted theta with a at its linear least-squares value, then refines the best
-//! pair by Gauss-Newton on both. The covariance is (J^T W J)^-1 scaled by the reduced
+//! pair on both with the law's own Jacobian by [`crate::least_squares`]
+//! (Levenberg-Marquardt). The covariance is (J^T W J)^-1 scaled by the reduced
 //! chi^2 (the residual scatter, as scipy's `curve_fit` does by default), so that points
 //! without errors of their own (an Eulerian sweep, weights 1) get errors from their
 //! scatter about the law.
@@ -14,6 +15,8 @@
 //! its error is taken as its qs* times the largest relative error of the points that have
 //! one. Weighing it 1 beside weights of 1/se^2 (1e4-1e6 for DEM rates) would drop it from
 //! the fit without a word; counting it as certain would let it pull the law alone.
+
+use crate::least_squares::LeastSquares;
 
 /// A fitted 3/2 law.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -43,11 +46,18 @@ fn law(a: f64, c: f64, x: f64) -> f64 {
     a * s * s.sqrt()
 }
 
+/// d law / d(a, c).
+fn law_derivative(a: f64, c: f64, x: f64) -> [f64; 2] {
+    let s = (x - c).max(0.0);
+    [s * s.sqrt(), -1.5 * a * s.sqrt()]
+}
+
 /// Fit y = a (x - c)^{3/2} to the points `(x, y, sigma)`, weighted by 1/sigma^2. A point
 /// with `None` (or a non-finite or non-positive sigma) takes the largest relative error of
 /// the points that have one (module comment); when none has one, every point weighs 1.
-/// `None` with fewer than three points or points that do not determine the law.
-pub fn fit(points: &[(f64, f64, Option<f64>)]) -> Option<Fit> {
+/// The error says why not: fewer than three points, a theta that is not positive, points
+/// that do not determine the law, no convergence.
+pub fn fit(points: &[(f64, f64, Option<f64>)]) -> Result<Fit, String> {
     let own = |s: Option<f64>| s.filter(|s| *s > 0.0 && s.is_finite());
     let finite: Vec<(f64, f64, Option<f64>)> = points
         .iter()
@@ -75,11 +85,11 @@ pub fn fit(points: &[(f64, f64, Option<f64>)]) -> Option<Fit> {
         .collect();
     let n = pts.len();
     if n < 3 {
-        return None;
+        return Err(format!("{n} points with finite values, fewer than the 3 a 3/2 law takes"));
     }
     let xmin = pts.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
     if xmin.is_nan() || xmin <= 0.0 {
-        return None;
+        return Err(format!("a point at theta = {xmin}: the law's threshold lies in 0 < theta_c < theta"));
     }
     let chi2 = |a: f64, c: f64| pts.iter().map(|&(x, y, w)| w * (y - law(a, c, x)).powi(2)).sum::<f64>();
     let best_a = |c: f64| {
@@ -103,62 +113,33 @@ pub fn fit(points: &[(f64, f64, Option<f64>)]) -> Option<Fit> {
             (a, c, best) = (ak, ck, r);
         }
     }
-    // Gauss-Newton on (a, c), halving a step that does not lower chi^2
-    let normal = |a: f64, c: f64| {
-        let (mut h, mut g) = ([[0.0; 2]; 2], [0.0; 2]);
-        for &(x, y, w) in &pts {
-            let s = (x - c).max(0.0);
-            let j = [s * s.sqrt(), -1.5 * a * s.sqrt()];
-            let r = y - law(a, c, x);
-            for p in 0..2 {
-                g[p] += w * j[p] * r;
-                for q in 0..2 {
-                    h[p][q] += w * j[p] * j[q];
-                }
-            }
-        }
-        (h, g)
-    };
-    for _ in 0..100 {
-        let (h, g) = normal(a, c);
-        let det = h[0][0] * h[1][1] - h[0][1] * h[1][0];
-        if det.is_nan() || det == 0.0 {
-            break;
-        }
-        let da = (h[1][1] * g[0] - h[0][1] * g[1]) / det;
-        let dc = (h[0][0] * g[1] - h[1][0] * g[0]) / det;
-        let mut t = 1.0;
-        let mut moved = false;
-        while t > 1e-6 {
-            let (na, nc) = (a + t * da, c + t * dc);
-            if nc < xmin && chi2(na, nc) < best {
-                (a, c, best) = (na, nc, chi2(na, nc));
-                moved = true;
-                break;
-            }
-            t *= 0.5;
-        }
-        if !moved || (da.abs() <= 1e-14 * a.abs() && dc.abs() <= 1e-14 * xmin) {
-            break;
-        }
+    if !(a.is_finite() && best.is_finite()) {
+        return Err("the points do not determine the law: no finite chi^2 at any threshold".into());
     }
-    let (h, _) = normal(a, c);
-    let det = h[0][0] * h[1][1] - h[0][1] * h[1][0];
-    if !(det.abs() > 0.0 && a.is_finite() && c.is_finite()) {
-        return None;
-    }
-    let scale = if n > 2 { best / (n - 2) as f64 } else { f64::NAN };
-    let var_a = h[1][1] / det * scale;
-    let var_c = h[0][0] / det * scale;
-    let rms = (pts.iter().map(|&(x, y, _)| (y - law(a, c, x)).powi(2)).sum::<f64>() / n as f64).sqrt();
+    // the scan's best pair refined on both by the one least-squares solver, inside
+    // theta_c < xmin where every point lies above the threshold
+    let x: Vec<f64> = pts.iter().map(|p| p.0).collect();
+    let y: Vec<f64> = pts.iter().map(|p| p.1).collect();
+    let w: Vec<f64> = pts.iter().map(|p| p.2).collect();
+    let start = [a, c];
+    let solution = LeastSquares::new(&["a", "theta_c"], &start, n)
+        .weights(&w)
+        .min_points(3)
+        .max_correlation(None)
+        // to round-off: the scan's pair is already close, and a and theta_c are reported to
+        // their last digits
+        .tolerances(1e-14, 0.0)
+        .jacobian(|p| Some(x.iter().flat_map(|&x| law_derivative(p[0], p[1], x)).collect()))
+        .solve(|p| (p[1] < xmin).then(|| x.iter().zip(&y).map(|(&x, y)| law(p[0], p[1], x) - y).collect()))?;
+    let (a, c) = (solution.params[0], solution.params[1]);
     let at_bound = c > xmin * (1.0 - 1e-3);
-    Some(Fit {
+    Ok(Fit {
         a,
-        a_stderr: var_a.max(0.0).sqrt(),
+        a_stderr: solution.stderr_independent[0],
         theta_c: c,
-        theta_c_stderr: var_c.max(0.0).sqrt(),
+        theta_c_stderr: solution.stderr_independent[1],
         n,
-        rms,
+        rms: solution.rms,
         at_bound,
         n_stand_in,
     })
@@ -231,6 +212,6 @@ mod tests {
 
     #[test]
     fn too_few_points_are_not_fitted() {
-        assert_eq!(fit(&[(0.1, 0.1, None), (0.2, 0.5, None)]), None);
+        assert!(fit(&[(0.1, 0.1, None), (0.2, 0.5, None)]).is_err());
     }
 }

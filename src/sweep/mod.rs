@@ -73,8 +73,11 @@ pub fn finish(
         if shields {
             for s in &series {
                 let fitted: Vec<_> = s.marks.iter().copied().filter(|m| m.1 > min).collect();
-                if let Some(f) = fit::fit(&fitted) {
-                    fits.push((s.label.clone(), f));
+                match fit::fit(&fitted) {
+                    Ok(f) => fits.push((s.label.clone(), f)),
+                    // a series of one or two transporting points has no law to fit
+                    Err(_) if fitted.len() < 3 => {}
+                    Err(e) => warnings.push(format!("series `{}`: no 3/2 law fitted: {e}", s.label)),
                 }
             }
             let f = out.join(series::FITS);
