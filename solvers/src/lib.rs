@@ -4,20 +4,19 @@
 //! 2023) and `lagrangian` ([`lagrangian`], soft-sphere DEM coupled to the column, Maurin
 //! et al. 2015). [`mod@column`] is the fluid column shared by both. [`resolve`] turns a
 //! scene into its solver, the only place that dispatches on the solver type; [`run()`]
-//! drives it ([`run::drive`]) and writes its outputs.
+//! drives it ([`run::drive`]) and writes its outputs ([`output`]). [`measures`] are the
+//! measures of profiles that the summaries of both solvers and the command line share.
 
 // Errors carry file, key and message for the user; they are built once per failed run,
 // never in a hot loop, so their size does not matter.
 #![allow(clippy::result_large_err)]
 
-pub mod bed_aligned;
-pub mod bedload;
 pub mod column;
 pub mod eulerian;
 pub mod inputs;
 pub mod lagrangian;
+pub mod measures;
 pub mod output;
-pub mod rouse;
 pub mod run;
 pub mod validate;
 

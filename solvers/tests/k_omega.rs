@@ -10,8 +10,8 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use saltus_core::scene::{parse_table, Scene};
-use saltus_solvers::bed_aligned;
 use saltus_solvers::eulerian::{Config, Eulerian};
+use saltus_solvers::measures::bed_aligned;
 use saltus_solvers::run::{drive, Ending, Quiet};
 
 fn root() -> PathBuf {
@@ -346,7 +346,7 @@ fn sheet_flow_rms(m: &Eulerian<'_>) -> Option<(f64, f64, f64)> {
     Some((rms(m.u_f(), &u), rms(m.u_p(), &u), rms(m.phi(), &with_phi)))
 }
 
-/// The bed-aligned metric ([`saltus_solvers::bed_aligned`]) against the data files: (shift (m),
+/// The bed-aligned metric ([`saltus_solvers::measures::bed_aligned`]) against the data files: (shift (m),
 /// RMS u_f over the 39 ACVP points, RMS phi over the 62 points with phi > 0).
 fn aligned_rms(m: &Eulerian<'_>) -> Option<(f64, f64, f64)> {
     let dir = root().join("../shared/data/revil_baudard2015_sheetflow");

@@ -173,8 +173,8 @@ fn revil_baudard_suspension_sheet_flows_reach_steady_state() {
         let (m, ending) = run(&s);
         assert_eq!(ending, Ending::Steady, "{scene}: residual {:e} /s at t = {} s", m.residual(), m.time());
         assert!(m.mass_error() < 1e-13, "{scene}: mass error {:e}", m.mass_error());
-        let z_b = saltus_solvers::bed_aligned::half_bed_level(m.z(), m.phi()).expect("a bed surface");
-        let suspended = saltus_solvers::bed_aligned::interpolate(m.z(), m.phi(), z_b + 0.02);
+        let z_b = saltus_solvers::measures::bed_aligned::half_bed_level(m.z(), m.phi()).expect("a bed surface");
+        let suspended = saltus_solvers::measures::bed_aligned::interpolate(m.z(), m.phi(), z_b + 0.02);
         assert!(suspended > 1e-4, "{scene}: phi 2 cm above the bed {suspended:e}");
     }
 }

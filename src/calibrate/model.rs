@@ -11,7 +11,7 @@ use saltus_solvers::{RunReport, WarmStart};
 
 use super::reference::{self, Reference};
 use super::spec::{key_error, Calibration};
-use saltus_solvers::bed_aligned::interpolate;
+use saltus_solvers::measures::bed_aligned::interpolate;
 
 /// One model run of a calibration.
 #[derive(Clone, Debug)]

@@ -20,7 +20,7 @@ use std::path::Path;
 
 use anyhow::Context;
 use saltus_core::scene::Scene;
-use saltus_solvers::bed_aligned::interpolate;
+use saltus_solvers::measures::bed_aligned::interpolate;
 use saltus_solvers::{Profiles, Summary};
 
 use super::spec::{key_error, Calibration};
@@ -80,7 +80,7 @@ impl Reference {
             // data: the run shifted rigidly so that its bed surface sits on the data's, as
             // the compare table's bed-aligned differences are taken
             let (z, phi) = (p.get("z")?, p.get("phi")?);
-            let shift = saltus_solvers::bed_aligned::shift(z, phi, dz, dphi)?;
+            let shift = saltus_solvers::measures::bed_aligned::shift(z, phi, dz, dphi)?;
             let mut out = p.clone();
             if let Some((_, v)) = out.columns.iter_mut().find(|(n, _)| n == "z") {
                 v.iter_mut().for_each(|z| *z -= shift);
@@ -169,7 +169,7 @@ pub fn load(cal: &Calibration, scene: &Scene) -> anyhow::Result<Reference> {
                     "no reference file of the base scene has `phi`, whose bed surface the model is aligned on".into(),
                 )
             })?;
-            if saltus_solvers::bed_aligned::half_bed_level(z, phi).is_none() {
+            if saltus_solvers::measures::bed_aligned::half_bed_level(z, phi).is_none() {
                 return Err(refuse(
                     "reference.align".into(),
                     "the data's phi has no bed surface (no level where it falls to half its bottom value)".into(),
@@ -235,7 +235,9 @@ pub fn load(cal: &Calibration, scene: &Scene) -> anyhow::Result<Reference> {
     }
     if wants("qs_star") {
         let depth = scene.domain.water_depth;
-        let scale = saltus_solvers::output::TransportScales::new(scene, scene.particles.density, d, depth).qs;
+        let scale =
+            saltus_solvers::measures::transport_scales::TransportScales::new(scene, scene.particles.density, d, depth)
+                .qs;
         if !(scale > 0.0 && scale.is_finite()) {
             return Err(refuse(
                 "misfit.terms".into(),

@@ -1,13 +1,14 @@
 //! Differences between a run's profiles and reference data, for the comparison table.
 //!
 //! The run's profile is interpolated linearly in z at each reference row inside the span of
-//! its cell centres, by the interpolation and RMS of [`saltus_solvers::bed_aligned`] (the
-//! bed-aligned metric's, here without a shift); rows outside are skipped (no
-//! extrapolation). For particle-phase
+//! its cell centres, by the interpolation and RMS of
+//! [`saltus_solvers::measures::bed_aligned`] (the bed-aligned metric's, here without a
+//! shift); rows outside are skipped (no extrapolation). For particle-phase
 //! columns (`u_p`, `theta_g`) a reference value of exactly 0 means "no grains, no data" (the
 //! DEM files write 0 above the granular layer) and the row is skipped.
 
-use saltus_solvers::{bed_aligned, Profiles};
+use saltus_solvers::measures::bed_aligned;
+use saltus_solvers::Profiles;
 
 use crate::table::Table;
 
@@ -26,7 +27,7 @@ pub fn rms_difference(run: &Profiles, reference: &Table, name: &str) -> Option<(
     bed_aligned::rms(zc, f, zr, fr, 0.0, inside)
 }
 
-/// Columns of the bed-aligned metric of the sheet flows (`saltus_solvers::bed_aligned`), written
+/// Columns of the bed-aligned metric of the sheet flows (`saltus_solvers::measures::bed_aligned`), written
 /// after the `rms_` columns when the reference data have a `phi` column with a packed bed:
 /// the shift of the run onto the data's bed surface (m), the RMS phi over the reference rows
 /// with phi > 0, the RMS of the run's `u_f` against the reference velocity (its `u_f`

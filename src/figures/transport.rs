@@ -5,7 +5,7 @@ use std::path::Path;
 
 use anyhow::bail;
 use plotters::prelude::*;
-use saltus_solvers::bedload::TransportLaw;
+use saltus_solvers::measures::bedload::TransportLaw;
 
 use super::{canvas, circle_key, color, cross_key, error_bars, legend, line_key, PAGE};
 

@@ -1,12 +1,12 @@
 //! The study's figure ([`crate::figures::transport`]): qs* against the swept Shields
 //! number, log-log, with the 3/2-law fit, the classic bedload laws
-//! ([`saltus_solvers::bedload::CLASSIC`]) and, when present, the Meyer-Peter & Mueller
+//! ([`saltus_solvers::measures::bedload::CLASSIC`]) and, when present, the Meyer-Peter & Mueller
 //! (1948) flume data as compiled by Recking (2010).
 
 use std::path::Path;
 
 use anyhow::{bail, Context};
-use saltus_solvers::bedload::TransportLaw;
+use saltus_solvers::measures::bedload::TransportLaw;
 
 use super::fit::Fit;
 use super::series::Series;

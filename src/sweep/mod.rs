@@ -104,7 +104,7 @@ pub fn finish(
             _ => Vec::new(),
         };
         let png = out.join(figure::FIGURE);
-        let laws: &[_] = if shields { &saltus_solvers::bedload::CLASSIC } else { &[] };
+        let laws: &[_] = if shields { &saltus_solvers::measures::bedload::CLASSIC } else { &[] };
         match figure::draw(&sweep.meta.name, &x_desc, &y_desc, &series, &fits, laws, &data, &png) {
             Ok(()) => files.push(png),
             Err(e) => warnings.push(format!("{}: not drawn: {e:#}", png.display())),

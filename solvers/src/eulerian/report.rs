@@ -10,6 +10,9 @@
 
 use super::rheology::Rheology;
 use super::Eulerian;
+use crate::measures::flux_levels::{flux_layer_thickness, flux_levels, flux_levels_by};
+use crate::measures::rouse::rouse_number;
+use crate::measures::transport_scales::TransportScales;
 use crate::output::{self, Profiles, Summary};
 use crate::run::{Ending, Sample};
 use crate::RunReport;
@@ -117,7 +120,7 @@ impl Eulerian<'_> {
     /// 1 % level of the transport as the report computes them, and the steady residual.
     pub(super) fn sample_row(&self) -> Sample {
         let scene = self.params.scene;
-        let scales = output::TransportScales::new(
+        let scales = TransportScales::new(
             scene,
             scene.particles.density,
             scene.particles.diameter,
@@ -127,7 +130,7 @@ impl Eulerian<'_> {
         let q = |i: usize| phi[i].max(0.0) * up[i];
         let qs: f64 = (0..self.len()).map(|i| q(i) * dz[i]).sum();
         let tau = (0..self.len()).fold(0.0f64, |a, i| a.max(self.fluid_shear_stress(i).abs()));
-        let (z1, _) = output::flux_levels_by(self.len(), |i| faces[i], q, 0.01, 0.99);
+        let (z1, _) = flux_levels_by(self.len(), |i| faces[i], q, 0.01, 0.99);
         Sample {
             time: self.time(),
             qs: output::finite(qs),
@@ -171,13 +174,13 @@ impl Eulerian<'_> {
 
         let qs: f64 = q.iter().zip(self.dz()).map(|(q, h)| q * h).sum();
         let tau_max = derived.tau_f.iter().fold(0.0f64, |a, t| a.max(t.abs()));
-        let scales = output::TransportScales::new(
+        let scales = TransportScales::new(
             scene,
             scene.particles.density,
             scene.particles.diameter,
             self.params.cfg.domain.water_depth,
         );
-        let (z1, z99) = output::flux_levels(self.faces(), &q, 0.01, 0.99);
+        let (z1, z99) = flux_levels(self.faces(), &q, 0.01, 0.99);
         let summary = Summary {
             scene: scene.meta.name.clone(),
             solver: "eulerian".into(),
@@ -187,7 +190,7 @@ impl Eulerian<'_> {
             shields_nominal: scales.shields_nominal,
             bed_height: output::finite(z1),
             transport_layer_thickness: output::finite(z99 - z1),
-            flux_layer_thickness: output::finite(output::flux_layer_thickness(
+            flux_layer_thickness: output::finite(flux_layer_thickness(
                 self.faces(),
                 &q,
                 scales.flux_velocity(scene.particles.diameter),
@@ -208,7 +211,7 @@ impl Eulerian<'_> {
             shields_turbulent: None,
             rouse_number: self.params.m.fluctuation.and_then(|_| {
                 let d = &self.params.cfg.domain;
-                crate::rouse::rouse_number(self.z(), self.dz(), &phi, d.bed_height, d.water_depth)
+                rouse_number(self.z(), self.dz(), &phi, d.bed_height, d.water_depth)
             }),
             ..Summary::default()
         };

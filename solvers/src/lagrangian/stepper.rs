@@ -8,6 +8,8 @@ use super::run::config::FluidMode;
 use super::run::solver::Lagrangian;
 use super::run::state::{self, Stage};
 use super::run::workspace::within;
+use crate::measures::flux_levels::flux_levels_by;
+use crate::measures::transport_scales::TransportScales;
 use crate::output::{self, finite};
 use crate::run::{Clock, Ending, Limits, Phase, Progress, Sample, Stepper};
 use crate::RunReport;
@@ -128,7 +130,7 @@ impl Stepper for Lagrangian<'_> {
             return s;
         }
         let mat = self.material();
-        let scales = output::TransportScales::new(self.scene(), mat.rho_p, mat.d, self.config().domain.water_depth);
+        let scales = TransportScales::new(self.scene(), mat.rho_p, mat.d, self.config().domain.water_depth);
         let qs = self.state.transport_rate();
         s.qs = finite(qs);
         s.qs_star = finite(scales.qs_star(qs));
@@ -137,7 +139,7 @@ impl Stepper for Lagrangian<'_> {
             s.shields = finite(scales.shields(tau));
         }
         let (dz, flux) = (self.dz(), &self.state.sums.v[0]);
-        let (z1, _) = output::flux_levels_by(flux.len(), |i| i as f64 * dz, |i| flux[i], 0.01, 0.99);
+        let (z1, _) = flux_levels_by(flux.len(), |i| i as f64 * dz, |i| flux[i], 0.01, 0.99);
         s.bed_surface = finite(z1);
         s
     }

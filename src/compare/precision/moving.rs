@@ -5,7 +5,7 @@
 
 use std::borrow::Cow;
 
-use saltus_solvers::output::flux_levels;
+use saltus_solvers::measures::flux_levels::flux_levels;
 use saltus_solvers::Profiles;
 
 use crate::eval::cell_widths;

@@ -17,7 +17,10 @@ use crate::lagrangian::run::config::FluidMode;
 use crate::lagrangian::run::solver::Lagrangian;
 use crate::lagrangian::stats::cooling::Cooling;
 use crate::lagrangian::stats::truncation::Window;
-use crate::output::{self, finite, Profiles, Summary};
+use crate::measures::flux_levels::{flux_layer_thickness, flux_levels};
+use crate::measures::rouse::rouse_number;
+use crate::measures::transport_scales::TransportScales;
+use crate::output::{finite, Profiles, Summary};
 use crate::run::{Clock, Ending};
 use crate::RunReport;
 
@@ -31,7 +34,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
     let z: Vec<f64> = (0..n).map(|c| (c as f64 + 0.5) * dz).collect();
     let faces: Vec<f64> = (0..=n).map(|c| c as f64 * dz).collect();
     let mat = m.material();
-    let scales = output::TransportScales::new(scene, mat.rho_p, mat.d, m.config().domain.water_depth);
+    let scales = TransportScales::new(scene, mat.rho_p, mat.d, m.config().domain.water_depth);
     let samples = m.stats().samples;
     let mut p = Profiles::default();
     let z_c = z.clone();
@@ -43,13 +46,13 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
         let qs: f64 = av.q_s.iter().map(|q| q * dz).sum();
         let tau_max = av.tau_face.iter().fold(0.0f64, |a, t| a.max(t.abs()));
         let tau_t_max = av.tau_t.iter().fold(0.0f64, |a, t| a.max(*t));
-        let (z1, z99) = output::flux_levels(&faces, &av.q_s, 0.01, 0.99);
-        let layer = output::flux_layer_thickness(&faces, &av.q_s, scales.flux_velocity(mat.d));
+        let (z1, z99) = flux_levels(&faces, &av.q_s, 0.01, 0.99);
+        let layer = flux_layer_thickness(&faces, &av.q_s, scales.flux_velocity(mat.d));
         transport = Some((qs, tau_max, tau_t_max, z1, z99, layer));
         if m.has_fluctuation() {
             let d = &m.config().domain;
             let dzs = vec![dz; n];
-            rouse = crate::rouse::rouse_number(&z_c, &dzs, &av.phi, d.bed_height, d.water_depth);
+            rouse = rouse_number(&z_c, &dzs, &av.phi, d.bed_height, d.water_depth);
         }
         p.push("phi", av.phi);
         p.push("u_f", av.u_f);
