@@ -50,6 +50,7 @@ pub mod plot;
 pub mod run_files;
 pub mod runner;
 pub mod seeds;
+pub mod study_file;
 pub mod sweep;
 pub mod table;
 

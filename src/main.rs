@@ -360,15 +360,20 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 }
                 let base = Scene::from_file_with_closures(&scene, &set, closures.as_deref())?;
                 // a folder of several seeds' developed states starts each seed from its own
-                let bank = match &warm_start {
-                    Some(from) => saltus::seeds::warm_bank(&base, from)
-                        .map_err(|e| anyhow::anyhow!("--warm-start {}: {e:#}", from.display()))?,
-                    None => None,
-                };
-                let single = if bank.is_some() { None } else { warm(&base)? };
-                let settings = saltus::runner::RunSettings { restart, log_every: None, max_wall, warm_start: single };
+                let starts = saltus::seeds::warm_starts(&base, warm_start.as_deref())?;
+                let settings =
+                    saltus::runner::RunSettings { restart, log_every: None, max_wall, warm_start: starts.single };
                 let out = out.unwrap_or_else(|| saltus::runner::default_out(&base));
-                let report = saltus::seeds::run_seeds(&scene, &set, closures.as_deref(), n, &out, &settings, bank)?;
+                let report = saltus::seeds::run_seeds(
+                    &scene,
+                    &set,
+                    closures.as_deref(),
+                    n,
+                    &out,
+                    &settings,
+                    starts.bank,
+                    &saltus::runner::interrupted,
+                )?;
                 if !quiet {
                     outln!("{}\noutputs: {}", report.text(), report.file.display());
                 }

@@ -14,6 +14,11 @@ use crate::figures::closures::{self, Curves};
 use crate::figures::register_font;
 use crate::table::Table;
 
+/// Most points of a figure's sweep.
+const MAX_POINTS: usize = 100_000;
+/// Most decades a logarithmic sweep spans.
+const MAX_DECADES: f64 = 200.0;
+
 /// A closure comparison file.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -89,8 +94,11 @@ pub fn run(path: &Path, out_dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
         let key = format!("figure[{fi}]");
         let family = EvalFamily::from_key(&fig.family).with_context(|| format!("{origin}: {key}.family"))?;
         let [a, b] = fig.range;
-        if fig.points < 2 || !(a.is_finite() && b.is_finite() && a < b) || (fig.log_x && a <= 0.0) {
-            bail!("{origin}: {key}: need points >= 2 and a range [from, to] with from < to (from > 0 on a log axis)");
+        let sweep = (2..=MAX_POINTS).contains(&fig.points) && a < b && (b - a).is_finite();
+        if !sweep || (fig.log_x && !(a > 0.0 && (b / a).log10() <= MAX_DECADES)) {
+            bail!(
+                "{origin}: {key}: need points from 2 to {MAX_POINTS} and a range [from, to] of finite numbers with from < to and a finite span to - from (on a log axis from > 0 and at most {MAX_DECADES} decades)"
+            );
         }
         let xs: Vec<f64> = (0..fig.points)
             .map(|i| {

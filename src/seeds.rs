@@ -343,9 +343,38 @@ pub fn warm_bank(scene: &Scene, from: &Path) -> anyhow::Result<Option<Vec<saltus
     Ok(Some(bank))
 }
 
+/// The warm starts of a run of several seeds of `scene` from the folder `from`: a bank of
+/// developed states, one per seed, when `from` holds the output of a run of several seeds
+/// ([`warm_bank`]), else the one final state of the run in `from`, which every seed
+/// starts from ([`runner::warm_state`]). Errors name `from` and why it cannot start them.
+pub fn warm_starts(scene: &Scene, from: Option<&Path>) -> anyhow::Result<WarmStarts> {
+    let Some(from) = from else { return Ok(WarmStarts::default()) };
+    let context = |e: anyhow::Error| anyhow::anyhow!("--warm-start {}: {e:#}", from.display());
+    if let Some(bank) = warm_bank(scene, from).map_err(context)? {
+        return Ok(WarmStarts { single: None, bank: Some(bank) });
+    }
+    match runner::warm_state(scene, from).map_err(|e| anyhow::anyhow!("--warm-start: {e:#}"))? {
+        Ok(w) => Ok(WarmStarts { single: Some(w), bank: None }),
+        Err(why) => bail!("--warm-start {}: {why}", from.display()),
+    }
+}
+
+/// Where the seeds of a run start: all from one state, each from its own, or (both
+/// `None`) from the scene.
+#[derive(Default)]
+pub struct WarmStarts {
+    /// the state every seed starts from
+    pub single: Option<saltus_solvers::WarmStart>,
+    /// one state per seed, in seed order
+    pub bank: Option<Vec<saltus_solvers::WarmStart>>,
+}
+
 /// Run `n` seeds of the DEM scene `file` (with `set` and `closures` as `saltus run` takes
 /// them) into `out/seed_<k>/`, k = the scene's seed .. seed + n - 1, in parallel, then
-/// write `out/seeds.json`. `settings` apply to every seed (no `--restart`).
+/// write `out/seeds.json`. `settings` apply to every seed (no `--restart`); `stop` is
+/// asked by every seed after each unit of work, and true ends them all, interrupted,
+/// with their outputs written.
+#[allow(clippy::too_many_arguments)]
 pub fn run_seeds(
     file: &Path,
     set: &[String],
@@ -354,6 +383,7 @@ pub fn run_seeds(
     out: &Path,
     settings: &RunSettings,
     bank: Option<Vec<saltus_solvers::WarmStart>>,
+    stop: &(dyn Fn() -> bool + Sync),
 ) -> anyhow::Result<SeedsReport> {
     if n == 0 || n > MAX_SEEDS {
         bail!("--seeds {n}: must be an integer in [1, {MAX_SEEDS}]");
@@ -418,15 +448,8 @@ pub fn run_seeds(
                     let mut member =
                         pool.map(|pool| Member { pool, index: i, next: POOL_INTERVAL, round: 0, time: 0.0 });
                     let extra = member.as_mut().map(|m| m as &mut dyn Observer);
-                    let outcome = runner::run_scene_observed(
-                        scene,
-                        &dir,
-                        &bar,
-                        seed_settings,
-                        &mut |_| runner::interrupted(),
-                        extra,
-                    )
-                    .unwrap_or_else(|e| RunOutcome::failed(e.to_string()));
+                    let outcome = runner::run_scene_observed(scene, &dir, &bar, seed_settings, &mut |_| stop(), extra)
+                        .unwrap_or_else(|e| RunOutcome::failed(e.to_string()));
                     drop(member);
                     SeedRun { seed: *seed, out: dir, outcome }
                 })

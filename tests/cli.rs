@@ -294,3 +294,34 @@ fn closure_plot_writes_png_and_csv_for_every_figure() {
         assert!(csv.lines().count() > 100, "{stem}.csv too short");
     }
 }
+
+/// A closure figure whose sweep would not end or not fit in memory is refused by name:
+/// too many points, a log range of more than 200 decades (whose axis's key points are
+/// counted from the ratio of its ends), a linear range whose span overflows; a linear
+/// range up to 1e308 draws.
+#[test]
+fn closure_plot_refuses_sweeps_beyond_its_limits() {
+    let d = tmp_dir("plot_limits");
+    let figure = |range: &str, points: &str, log: bool| {
+        format!(
+            "[[figure]]\nname = \"f\"\nfamily = \"drag\"\nx = \"re_p\"\ny = \"cd\"\nrange = {range}\npoints = {points}\nlog_x = {log}\nlog_y = {log}\n[[figure.model]]\nlabel = \"Stokes\"\nmodel = {{ type = \"stokes\" }}\n"
+        )
+    };
+    for (name, range, points, log) in [
+        ("many", "[0.01, 100.0]", "1000000000000", true),
+        ("decades", "[1e-300, 1e300]", "10", true),
+        ("one", "[0.01, 100.0]", "1", false),
+        ("span", "[-1e308, 1e308]", "5", false),
+    ] {
+        let file = d.join(format!("{name}.toml"));
+        std::fs::write(&file, figure(range, points, log)).unwrap();
+        let o = saltus(&["closure", "plot", file.to_str().unwrap(), "--out", d.to_str().unwrap()]);
+        let e = stderr(&o);
+        assert!(!o.status.success() && e.contains("figure[0]") && e.contains("100000"), "{name}: {e}");
+    }
+    let file = d.join("wide.toml");
+    std::fs::write(&file, figure("[0.0, 1e308]", "5", false)).unwrap();
+    let o = saltus(&["closure", "plot", file.to_str().unwrap(), "--out", d.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(d.join("f.png").is_file());
+}

@@ -2,7 +2,8 @@
 //! `saltus models --json` print what the hand-written `Describe` impls printed
 //! (tests/fixtures/models_before.*, captured from the binary before the conversion), but
 //! for the one intended change: string options and switches are listed with their allowed
-//! values (text lines after the parameters, a JSON `options` array).
+//! values (text lines after the parameters, a JSON `options` array). The fixture follows
+//! the closures' ranges as they are set (k-omega's `roughness` is [1e-3, 1e3] d).
 
 mod common;
 

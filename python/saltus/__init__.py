@@ -37,6 +37,7 @@ from ._compare import CompareResult, compare
 from ._models import CheckReport, Closure, closure_check, models
 from ._native import RunError, SceneError
 from ._run import Overrides, PathLike, Result, SaltusWarning, check, diagnose, run
+from ._seeds import SeedsResult, run_seeds
 from ._sweep import SweepResult, sweep
 from .closures import (
     register_closure,
@@ -50,6 +51,8 @@ from .posterior import PosteriorResult, posterior
 
 __all__ = [
     "run",
+    "run_seeds",
+    "SeedsResult",
     "compare",
     "CompareResult",
     "calibrate",

@@ -24,6 +24,16 @@ def run(
     quiet: bool = True,
     restart: Optional[str] = None,
     closures: Optional[str] = None,
+    warm_start: Optional[str] = None,
+) -> Dict[str, Any]: ...
+def run_seeds(
+    scene: str,
+    seeds: int,
+    set: _Overrides = None,
+    out: Optional[str] = None,
+    quiet: bool = True,
+    closures: Optional[str] = None,
+    warm_start: Optional[str] = None,
 ) -> Dict[str, Any]: ...
 def diagnose(
     dir: str,

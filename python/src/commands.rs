@@ -19,7 +19,7 @@ use crate::errors::{load_error, run_error, Place, RunError, SceneError};
 
 /// Wall time between two looks at Python's pending signals during a run: Ctrl-C stops a
 /// run within this, and the GIL is taken five times a second, not once a step.
-const SIGNAL_CHECK_EVERY: Duration = Duration::from_millis(200);
+pub(crate) const SIGNAL_CHECK_EVERY: Duration = Duration::from_millis(200);
 
 /// `saltus check`: the scene loaded with the overrides and checked whole, as (dict, TOML
 /// text of the resolved scene).

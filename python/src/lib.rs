@@ -31,6 +31,7 @@ mod closures;
 mod commands;
 mod convert;
 mod errors;
+mod seeds;
 mod sweep;
 
 /// The native module `saltus._native`.
@@ -44,6 +45,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("RunError", py.get_type::<errors::RunError>())?;
     m.add_function(wrap_pyfunction!(commands::check, m)?)?;
     m.add_function(wrap_pyfunction!(commands::run, m)?)?;
+    m.add_function(wrap_pyfunction!(seeds::run_seeds, m)?)?;
     m.add_function(wrap_pyfunction!(commands::compare, m)?)?;
     m.add_function(wrap_pyfunction!(calibrate::calibrate, m)?)?;
     m.add_class::<calibrate::Misfit>()?;

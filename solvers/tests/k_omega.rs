@@ -354,8 +354,10 @@ fn aligned_rms(m: &Eulerian<'_>) -> Option<(f64, f64, f64)> {
     let p = rows(&dir.join("Revil-Baudard2015_phi.txt"))?;
     let col = |t: &[Vec<f64>], k: usize| -> Vec<f64> { t.iter().map(|r| r[k]).collect() };
     let (uz, uu) = (col(&u, 0), col(&u, 1));
-    let a = bed_aligned::aligned(m.z(), m.phi(), m.u_f(), &col(&p, 0), &col(&p, 1), Some((&uz, &uu)))?;
-    Some((a.shift, a.u?.0, a.phi.0))
+    // with the data present the alignment must succeed: only missing data is a `None`
+    let a = bed_aligned::aligned(m.z(), m.phi(), m.u_f(), &col(&p, 0), &col(&p, 1), Some((&uz, &uu)))
+        .expect("the run's profiles align with the measured ones");
+    Some((a.shift, a.u.expect("u_f aligned with the measured profile").0, a.phi.0))
 }
 
 /// The Revil-Baudard sheet flow under the three turbulence closures of

@@ -198,7 +198,7 @@ fn terminal_velocity(s: &Scene) -> f64 {
 }
 
 /// Expected number of the scene's DEM grains whose centres lie in the Rouse fit range
-/// (0.1 h to 0.5 h above z_b, solvers/src/rouse.rs) in the diffusion limit of the particle
+/// (0.1 h to 0.5 h above z_b, solvers/src/measures/rouse.rs) in the diffusion limit of the particle
 /// face: the `eim` draws diffuse in the Ito form (docs/closures/fluctuation.md), the wall
 /// holds a grain's centre at the contact height d/2 (no flux below it), so the steady
 /// profile above d/2 is D phi ~ exp(-int_{d/2}^z w_s / D dz') (w_s phi = -d(D phi)/dz).

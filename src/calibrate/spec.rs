@@ -3,9 +3,11 @@
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
-use saltus_core::scene::{de_path, parse_table, Meta};
-use saltus_core::Error;
+use saltus_core::scene::Meta;
 use serde::Deserialize;
+
+use crate::study_file;
+pub(super) use crate::study_file::key_error;
 
 /// Misfit terms a calibration may use.
 pub const TERMS: [&str; 3] = ["phi", "u_p", "qs_star"];
@@ -153,10 +155,6 @@ pub struct Calibration {
     pub optimiser: OptimiserSpec,
 }
 
-pub(super) fn key_error(file: &Path, key: impl Into<String>, message: impl Into<String>) -> anyhow::Error {
-    Error::Key { file: file.to_path_buf(), key: key.into(), message: message.into() }.into()
-}
-
 fn finite_positive(v: f64) -> bool {
     v.is_finite() && v > 0.0
 }
@@ -165,10 +163,7 @@ fn finite_positive(v: f64) -> bool {
 /// form; the parameters' keys and the reference's contents are checked against the base
 /// scene by [`super::Problem::new`].
 pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Calibration> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io { file: path.into(), source })?;
-    let table = parse_table(&text, path)?;
-    let raw: RawFile = de_path(toml::Value::Table(table), path, "")?;
-    let folder = path.parent().unwrap_or(Path::new(""));
+    let (raw, folder): (RawFile, _) = study_file::read(path)?;
     if raw.parameters.is_empty() {
         return Err(key_error(
             path,
@@ -284,18 +279,8 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Calibration> {
     if !(finite_positive(o.profile_span) && o.profile_span <= 100.0) {
         return Err(key_error(path, "optimiser.profile_span", format!("{}: in (0, 100]", o.profile_span)));
     }
-    let base = folder.join(&raw.base);
-    if !base.is_file() {
-        return Err(key_error(path, "base", format!("`{}`: no such scene file ({})", raw.base, base.display())));
-    }
-    let closures = match raw.closures {
-        Some(c) => {
-            let file = folder.join(&c);
-            saltus_core::scene::closures_file_tables(&file).map_err(|e| key_error(path, "closures", format!("{e}")))?;
-            Some(file)
-        }
-        None => None,
-    };
+    let base = study_file::base_scene(path, &raw.base)?;
+    let closures = raw.closures.map(|c| study_file::closures_file(path, "closures", &c)).transpose()?;
     for (i, run) in reference.runs.iter_mut().enumerate() {
         *run = folder.join(&*run);
         if !run.join(crate::run_files::PROFILES).is_file() {
@@ -306,10 +291,7 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Calibration> {
             ));
         }
     }
-    let mut meta = raw.meta;
-    if meta.name.is_empty() {
-        meta.name = path.file_stem().map_or_else(|| "calibration".into(), |s| s.to_string_lossy().into_owned());
-    }
+    let meta = study_file::named(raw.meta, path, "calibration");
     let mut sets = raw.set;
     sets.extend(set.iter().cloned());
     Ok(Calibration {

@@ -30,14 +30,14 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget};
 use rayon::prelude::*;
-use saltus_core::scene::{de_path, parse_table, Meta, Scene};
-use saltus_core::Error;
+use saltus_core::scene::{Meta, Scene};
 use saltus_solvers::RunReport;
 use serde::Deserialize;
 
 use crate::figures::profiles::{self, Reference, COMPARE_PANELS};
 use crate::figures::register_font;
 use crate::runner;
+use crate::study_file::{self, key_error};
 use precision::ReferenceSpec;
 
 /// File names written in the output folder, next to one folder per variant.
@@ -120,17 +120,11 @@ pub fn slug(name: &str) -> String {
     s.trim_end_matches('-').to_string()
 }
 
-fn key_error(file: &Path, key: impl Into<String>, message: impl Into<String>) -> anyhow::Error {
-    Error::Key { file: file.to_path_buf(), key: key.into(), message: message.into() }.into()
-}
-
 /// Read and check a compare file: TOML syntax, keys, variant names, and the base scene
 /// (loaded once with the command line's overrides `set` only, so that a broken base fails
 /// before any run).
 pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Comparison> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io { file: path.into(), source })?;
-    let table = parse_table(&text, path)?;
-    let raw: RawFile = de_path(toml::Value::Table(table), path, "")?;
+    let (raw, _): (RawFile, _) = study_file::read(path)?;
     if raw.variants.is_empty() {
         return Err(key_error(path, "variant", "no [[variant]] table; give at least one, each with name and set"));
     }
@@ -156,26 +150,16 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Comparison> {
     if let Some(r) = &raw.reference {
         check_reference(path, r, &raw.variants)?;
     }
-    let folder = path.parent().unwrap_or(Path::new(""));
     let mut variants = raw.variants;
     for (i, v) in variants.iter_mut().enumerate() {
         if let Some(c) = v.closures.take() {
-            let file = folder.join(&c);
-            saltus_core::scene::closures_file_tables(&file)
-                .map_err(|e| key_error(path, format!("variant[{i}].closures"), format!("{e}")))?;
-            v.closures = Some(file);
+            v.closures = Some(study_file::closures_file(path, format!("variant[{i}].closures"), &c)?);
         }
     }
-    let base = folder.join(&raw.base);
-    if !base.is_file() {
-        return Err(key_error(path, "base", format!("`{}`: no such scene file ({})", raw.base, base.display())));
-    }
+    let base = study_file::base_scene(path, &raw.base)?;
     Scene::from_file_with(&base, set)
         .map_err(|e| key_error(path, "base", format!("the base scene is invalid: {e}")))?;
-    let mut meta = raw.meta;
-    if meta.name.is_empty() {
-        meta.name = path.file_stem().map_or_else(|| "comparison".into(), |s| s.to_string_lossy().into_owned());
-    }
+    let meta = study_file::named(raw.meta, path, "comparison");
     Ok(Comparison { file: path.to_path_buf(), base, meta, variants, set: set.to_vec(), reference: raw.reference })
 }
 

@@ -41,10 +41,9 @@ fn finite_range(t: &Table, log: bool) -> (f64, f64) {
         hi = lo + lo.abs().max(1.0) * 0.1;
     }
     if log {
-        (lo / 1.2, hi * 1.2)
+        super::log_span(lo, hi, 1.2)
     } else {
-        let pad = 0.05 * (hi - lo);
-        (lo - pad, hi + pad)
+        super::linear_span(lo, hi, 0.05)
     }
 }
 
@@ -52,7 +51,8 @@ fn finite_range(t: &Table, log: bool) -> (f64, f64) {
 /// labelled with its name, on the axes of `fig`, into `png`.
 pub fn draw(fig: &Curves, t: &Table, png: &Path) -> anyhow::Result<()> {
     let root = canvas(png, (900, 620))?;
-    let (x0, x1) = (fig.range[0], fig.range[1]);
+    let (x0, x1) =
+        if fig.log_x { super::log_span(fig.range[0], fig.range[1], 1.0) } else { (fig.range[0], fig.range[1]) };
     let (y0, y1) = finite_range(t, fig.log_y);
     let mut builder = Frame { caption: 24, ..PAGE }.on(&root, fig.caption);
     macro_rules! body {

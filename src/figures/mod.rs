@@ -68,6 +68,35 @@ pub fn canvas(png: &Path, size: (u32, u32)) -> anyhow::Result<Area<'_>> {
     Ok(root)
 }
 
+/// Most decades a logarithmic axis spans: the axis's key points are counted from the
+/// ratio of its ends, which must stay far from overflow.
+const MAX_DECADES: i32 = 200;
+
+/// The ends of a logarithmic axis over the values `lo..hi`, widened by `factor` each
+/// side, inside the positive normal numbers and at most [`MAX_DECADES`] decades apart
+/// (the lower end raised): a value near 1e308 or 1e-308 would otherwise give an infinite
+/// or zero end, or a ratio of the ends that overflows, on which the axis's key points
+/// never end.
+pub fn log_span(lo: f64, hi: f64, factor: f64) -> (f64, f64) {
+    let inside = |v: f64| v.clamp(f64::MIN_POSITIVE, f64::MAX / 16.0);
+    let (a, b) = (inside(lo / factor), inside(hi * factor));
+    let a = a.max(b / 10f64.powi(MAX_DECADES));
+    if b > a {
+        (a, b)
+    } else {
+        (a, a * 4.0)
+    }
+}
+
+/// The ends of a linear axis over `lo..hi`, padded by `pad` of the span each side, with
+/// finite ends and a finite span (values beyond +-1e307 are drawn at the frame).
+pub fn linear_span(lo: f64, hi: f64, pad: f64) -> (f64, f64) {
+    const END: f64 = 1e307;
+    let (lo, hi) = (lo.clamp(-END, END), hi.clamp(-END, END));
+    let width = (hi - lo) * pad;
+    (lo - width, hi + width)
+}
+
 /// The sizes around a chart's axes: caption font, margin, label areas below and left.
 #[derive(Clone, Copy, Debug)]
 pub struct Frame {
@@ -154,4 +183,24 @@ pub fn error_bars(
     bars.into_iter()
         .filter(|(x, y, e)| *e > 0.0 && x.is_finite() && y.is_finite() && e.is_finite())
         .map(move |(x, y, e)| ErrorBar::new_vertical(x, (y - e).max(y0), y, (y + e).min(y1), style, 6))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn axis_spans_keep_finite_ordered_ends() {
+        for (lo, hi) in [(1e-308, 1e308), (f64::MIN_POSITIVE, f64::MAX), (5e-324, 5e-324), (1.0, 1.0), (0.1, 10.0)] {
+            let (a, b) = log_span(lo, hi, 2.0);
+            assert!(a.is_normal() && b.is_normal() && 0.0 < a && a < b, "{lo} {hi}: {a} {b}");
+            assert!((b / a).log10() <= f64::from(MAX_DECADES) + 1e-9, "{lo} {hi}: {a} {b}");
+        }
+        assert_eq!(log_span(0.1, 10.0, 2.0), (0.05, 20.0));
+        for (lo, hi) in [(-f64::MAX, f64::MAX), (-1e308, 0.0), (0.0, 1.0)] {
+            let (a, b) = linear_span(lo, hi, 0.05);
+            assert!(a.is_finite() && b.is_finite() && (b - a).is_finite() && a < b, "{lo} {hi}: {a} {b}");
+        }
+        assert_eq!(linear_span(0.0, 1.0, 0.05), (-0.05, 1.05));
+    }
 }

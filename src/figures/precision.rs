@@ -38,7 +38,7 @@ pub fn draw(title: &str, x_desc: &str, measures: &[Measure], png: &Path) -> anyh
     let bars = measures.iter().take(1).flat_map(|m| &m.marks).filter_map(|m| m.bar.filter(|b| *b > 0.0));
     let (x0, x1) = marks.clone().fold((f64::INFINITY, 0.0f64), |(a, b), m| (a.min(m.cost), b.max(m.cost)));
     let (y0, y1) = marks.map(|m| m.error).chain(bars).fold((f64::INFINITY, 0.0f64), |(a, b), y| (a.min(y), b.max(y)));
-    let (x0, x1, y0, y1) = (x0 / 1.5, x1 * 1.5, y0 / 2.0, y1 * 2.0);
+    let ((x0, x1), (y0, y1)) = (super::log_span(x0, x1, 1.5), super::log_span(y0, y1, 2.0));
     let root = canvas(png, (900, 680))?;
     let mut chart = PAGE.on(&root, title).build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
     chart

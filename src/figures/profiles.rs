@@ -153,17 +153,17 @@ fn axis_range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
         // the bed holds temperatures many decades below the transport layer's
         let lo = lo.max(hi * 1e-8);
         if hi <= lo {
-            return (lo / 10.0, lo * 10.0);
+            return super::log_span(lo, lo, 10.0);
         }
-        (lo / 1.5, hi * 1.5)
+        super::log_span(lo, hi, 1.5)
     } else {
         // keep zero in view: profiles start from a bed at rest
         let (lo, hi) = (lo.min(0.0), hi.max(0.0));
         if hi <= lo {
             return (lo - 1.0, lo + 1.0);
         }
-        let pad = 0.05 * (hi - lo);
-        (if lo < 0.0 { lo - pad } else { lo }, hi + pad)
+        let (a, b) = super::linear_span(lo, hi, 0.05);
+        (if lo < 0.0 { a } else { lo }, b)
     }
 }
 

@@ -65,8 +65,8 @@ pub fn draw(
     let ys = all.iter().map(|(_, m)| m.1).chain(data.points.iter().map(|d| d.1).filter(|y| *y > 0.0));
     let (x0, x1) = xs.fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
     let (y0, y1) = ys.fold((f64::INFINITY, 0.0f64), |(a, b), y| (a.min(y), b.max(y)));
-    let (x0, x1) = (x0 / 1.3, x1 * 1.3);
-    let (y0, y1) = (y0 / 2.0, y1 * 2.0);
+    let (x0, x1) = super::log_span(x0, x1, 1.3);
+    let (y0, y1) = super::log_span(y0, y1, 2.0);
     let root = canvas(png, (900, 680))?;
     let mut chart = PAGE.on(&root, title).build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
     chart
@@ -120,4 +120,24 @@ pub fn draw(
     legend(&mut chart, SeriesLabelPosition::UpperLeft, 13)?;
     root.present()?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Points at the ends of the double range (a flume table with 1e308 or 1e-308 in it)
+    /// draw a figure: the log axes keep finite, positive ends.
+    #[test]
+    fn points_at_the_ends_of_the_double_range_draw() {
+        let dir = std::env::temp_dir().join(format!("saltus_transport_figure_{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let png = dir.join("extreme.png");
+        let marks: Vec<Mark> = vec![(1e308, 1e308, None), (1e-308, 1e-308, Some(1e-308)), (0.5, 1.0, Some(0.1))];
+        let series = [Series { label: "extremes".into(), marks: &marks, fit: None }];
+        let data = Data { label: "flume", points: &[(f64::MAX, f64::MIN_POSITIVE)] };
+        draw("extremes", ("theta", "qs*"), &series, &[], data, &png).unwrap();
+        assert!(png.is_file());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -4,9 +4,11 @@
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
-use saltus_core::scene::{apply_override, de_path, parse_table, Meta, Scene};
+use saltus_core::scene::{apply_override, parse_table, Meta, Scene};
 use saltus_core::Error;
 use serde::Deserialize;
+
+use crate::study_file::{self, key_error};
 
 /// Most points of one sweep: past any study a machine or a job array runs, small enough
 /// that a typo in a `logspace` count is refused rather than expanded.
@@ -157,8 +159,10 @@ pub struct Sweep {
     pub figure: FigureSpec,
 }
 
-fn key_error(file: &Path, key: impl Into<String>, message: impl Into<String>) -> anyhow::Error {
-    Error::Key { file: file.to_path_buf(), key: key.into(), message: message.into() }.into()
+/// The raw table of the scene file `file`, before any override.
+fn scene_table(file: &Path) -> anyhow::Result<toml::Table> {
+    let text = std::fs::read_to_string(file).map_err(|source| Error::Io { file: file.to_path_buf(), source })?;
+    Ok(parse_table(&text, file)?)
 }
 
 fn label(v: &toml::Value) -> String {
@@ -270,9 +274,7 @@ impl Axis {
 /// (resolved and checked as `saltus check` would), so that bad input is refused before
 /// any run. `set` are the command line's overrides, applied to every point first.
 pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Sweep> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io { file: path.into(), source })?;
-    let table = parse_table(&text, path)?;
-    let raw: RawFile = de_path(toml::Value::Table(table), path, "")?;
+    let (raw, _): (RawFile, _) = study_file::read(path)?;
     if raw.axes.is_empty() {
         return Err(key_error(path, "axis", "no [[axis]] table; give at least one, each with key and values"));
     }
@@ -361,12 +363,8 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Sweep> {
                 .collect()
         }
     };
-    let base = path.parent().unwrap_or(Path::new("")).join(&raw.base);
-    if !base.is_file() {
-        return Err(key_error(path, "base", format!("`{}`: no such scene file ({})", raw.base, base.display())));
-    }
-    let base_text = std::fs::read_to_string(&base).map_err(|source| Error::Io { file: base.clone(), source })?;
-    let base_table = parse_table(&base_text, &base)?;
+    let base = study_file::base_scene(path, &raw.base)?;
+    let base_table = scene_table(&base)?;
     for (k, u) in raw.unset.iter().enumerate() {
         let mut t = base_table.clone();
         remove_key(&mut t, u).map_err(|m| key_error(path, format!("unset[{k}]"), m))?;
@@ -418,10 +416,7 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Sweep> {
             Point { index, at, set: s, unset: raw.unset.clone(), own_unset: punset, own_set: pset }
         })
         .collect();
-    let mut meta = raw.meta;
-    if meta.name.is_empty() {
-        meta.name = path.file_stem().map_or_else(|| "sweep".into(), |s| s.to_string_lossy().into_owned());
-    }
+    let meta = study_file::named(raw.meta, path, "sweep");
     let sweep = Sweep {
         file: path.to_path_buf(),
         base,
@@ -443,9 +438,7 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Sweep> {
 impl Sweep {
     /// The raw table of the base scene.
     pub fn base_table(&self) -> anyhow::Result<toml::Table> {
-        let text =
-            std::fs::read_to_string(&self.base).map_err(|source| Error::Io { file: self.base.clone(), source })?;
-        Ok(parse_table(&text, &self.base)?)
+        scene_table(&self.base)
     }
 
     /// The resolved and checked scene of `p`, built on `base` (the raw base scene).

@@ -53,7 +53,8 @@ pub enum KOmegaWall {
 ///   two calibrated constants (see decisions): C_s = 0.25 (table 1: 1) and K_r = 65 (text:
 ///   80); sigma_c = 1 (not given in the paper, see decisions); no time average of the
 ///   relative velocity (eq 24, text: t_0 = 5 s; see decisions).
-/// * Valid range: coefficients positive (C_3w, C_4w, C_s non-negative); phi_b in (0, 1).
+/// * Valid range: coefficients positive (C_3w, C_4w, C_s non-negative); phi_b in (0, 1);
+///   k_s from 1e-3 to 1e3 d (a vanishing k_s makes omega_bed = 40000 nu / k_s^2 overflow).
 ///   Low-Reynolds wall-bounded flow with the first cell in the viscous sublayer
 ///   (z_o^+ < ~2) for the smooth wall and well inside it (z_o^+ < ~0.3) for the rough wall,
 ///   whose k rises from 0 over a few viscous lengths; sheet flow with a bed at phi > phi_b
@@ -180,7 +181,7 @@ pub struct KOmega {
     /// bottom-wall treatment
     pub wall: KOmegaWall,
     /// Nikuradse roughness k_s in diameters (eq 35)
-    #[param(range = "(0, inf)", unit = "d")]
+    #[param(range = "[1e-3, 1e3]", unit = "d")]
     pub roughness: f64,
     /// K_r of eq 35
     #[param(range = "(0, inf)", unit = "-")]

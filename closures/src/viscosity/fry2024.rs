@@ -92,6 +92,8 @@ impl Fry2024 {
 ///   coefficient `beta` (`exchange`, per unit volume) is beta gamma_f d^2 / 20, since the
 ///   integral of (z - z_c)^2 over a sphere is V d^2 / 20.
 /// * Not finite where the shear vanishes: the ratio is measured only in sheared cells.
+/// * Valid for `d` and `eta_f` finite and > 0, `exchange` >= 0 and `gamma` != 0, all
+///   finite; the DEM column's cells give them in SI units.
 #[inline]
 pub fn stress_ratio(tau_f: f64, exchange: f64, gamma: f64, d: f64, eta_f: f64) -> f64 {
     (tau_f + exchange * gamma * (d * d / 20.0)) / (eta_f * gamma)
@@ -159,10 +161,23 @@ mod tests {
     fn stress_ratio_of_the_column_alone_and_with_the_exchange() {
         // no exchange: the column's stress eps eta_f gamma gives the fluid fraction
         assert_relative_eq!(stress_ratio(0.7 * 1e-3 * 3.0, 0.0, 3.0, 1e-3, 1e-3), 0.7, max_relative = 1e-15);
-        // the exchange's moment beta gamma d^2 / 20 on top: 20 * 1e-3 * 3 * 1e-6 / 20 = 3e-9
+        // the exchange's moment on top: beta gamma d^2 / 20 = 20 * 3 * 1e-6 / 20 = 3e-6 Pa
+        // over eta_f gamma = 3e-3 Pa
         let (eta_f, d, gamma, beta) = (1e-3, 1e-3, 3.0, 20.0);
-        let r = stress_ratio(0.0, beta, gamma, d, eta_f);
-        assert_relative_eq!(r, beta * gamma * d * d / 20.0 / (eta_f * gamma), max_relative = 1e-15);
+        assert_relative_eq!(stress_ratio(0.0, beta, gamma, d, eta_f), 1e-3, max_relative = 1e-14);
+        // d^2 / 20 is the second moment of a sphere about its centre plane: the integral of
+        // z^2 pi (R^2 - z^2) dz over the sphere's volume, by the midpoint rule
+        let (radius, n) = (0.5 * d, 20_000);
+        let h = 2.0 * radius / n as f64;
+        let moment: f64 = (0..n)
+            .map(|k| {
+                let z = -radius + (k as f64 + 0.5) * h;
+                z * z * std::f64::consts::PI * (radius * radius - z * z) * h
+            })
+            .sum::<f64>()
+            / (4.0 / 3.0 * std::f64::consts::PI * radius.powi(3));
+        let from_moment = beta * gamma * moment / (eta_f * gamma);
+        assert_relative_eq!(stress_ratio(0.0, beta, gamma, d, eta_f), from_moment, max_relative = 1e-6);
         assert!(stress_ratio(0.0, beta, 0.0, d, eta_f).is_nan());
     }
 

@@ -23,7 +23,7 @@ struct Phase<'a> {
 }
 
 impl Band for Phase<'_> {
-    #[inline]
+    #[inline(always)]
     fn add(&mut self, row: usize, lower: f64, diag: f64, upper: f64, rhs: f64) {
         let c = self.c;
         self.block.lower[row][c] += lower;

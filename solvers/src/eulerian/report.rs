@@ -9,10 +9,10 @@
 //! such cells are NaN in the profiles and an empty cell in `profiles.csv`.
 
 use super::rheology::Rheology;
+use super::stress::local_state;
 use super::Eulerian;
 use crate::measures::flux_levels::{flux_layer_thickness, flux_levels, flux_levels_by};
 use crate::measures::rouse::rouse_number;
-use crate::measures::transport_scales::TransportScales;
 use crate::output::{self, Profiles, Summary};
 use crate::run::{Ending, Sample};
 use crate::RunReport;
@@ -50,8 +50,8 @@ impl Eulerian<'_> {
             let f = 0.5 * (s.flux[i] + s.flux[i + 1]);
             out.w_p.push(if s.phi[i] > 1e-6 { f / s.phi[i] } else { 0.0 });
             let x = match self.params.m.rheology {
-                Rheology::Local { model, .. } => model.control_number(&self.local_state(co.gamma_p[i], p)),
-                Rheology::Kinetic { .. } => self.local_state(co.gamma_p[i], co.pres[i].p).inertial_number(),
+                Rheology::Local { model, .. } => model.control_number(&local_state(&self.params, co.gamma_p[i], p)),
+                Rheology::Kinetic { .. } => local_state(&self.params, co.gamma_p[i], co.pres[i].p).inertial_number(),
             };
             out.control.push(if x.is_finite() { x } else { f64::NAN });
         }
@@ -72,7 +72,7 @@ impl Eulerian<'_> {
         let n = self.len();
         let (c, co) = (self.params.c, &self.work.co);
         let gamma = &co.gamma_p[..n];
-        let state = |i: usize| self.local_state(gamma[i], p_p[i]);
+        let state = |i: usize| local_state(&self.params, gamma[i], p_p[i]);
         let defined = |x: f64| if x.is_finite() { x } else { f64::NAN };
         let per_cell = |f: &dyn Fn(usize) -> f64| (0..n).map(f).map(defined).collect::<Vec<_>>();
         p.push("gamma_dot", gamma.to_vec());
@@ -119,13 +119,7 @@ impl Eulerian<'_> {
     /// The state as a row of the time series: qs, the largest fluid shear stress and the
     /// 1 % level of the transport as the report computes them, and the steady residual.
     pub(super) fn sample_row(&self) -> Sample {
-        let scene = self.params.scene;
-        let scales = TransportScales::new(
-            scene,
-            scene.particles.density,
-            scene.particles.diameter,
-            self.params.cfg.domain.water_depth,
-        );
+        let scales = self.params.scales;
         let (phi, up, dz, faces) = (self.phi(), self.u_p(), self.dz(), self.faces());
         let q = |i: usize| phi[i].max(0.0) * up[i];
         let qs: f64 = (0..self.len()).map(|i| q(i) * dz[i]).sum();
@@ -174,12 +168,7 @@ impl Eulerian<'_> {
 
         let qs: f64 = q.iter().zip(self.dz()).map(|(q, h)| q * h).sum();
         let tau_max = derived.tau_f.iter().fold(0.0f64, |a, t| a.max(t.abs()));
-        let scales = TransportScales::new(
-            scene,
-            scene.particles.density,
-            scene.particles.diameter,
-            self.params.cfg.domain.water_depth,
-        );
+        let scales = self.params.scales;
         let (z1, z99) = flux_levels(self.faces(), &q, 0.01, 0.99);
         let summary = Summary {
             scene: scene.meta.name.clone(),

@@ -14,6 +14,7 @@ use super::workspace::{Coefficients, Scratch};
 use crate::column::turbulence::{friction_velocity, EddyViscosity, KOmegaPhysics, KOmegaRun};
 use crate::column::{ColumnOperator, Grid};
 use crate::inputs::DragKernel;
+use crate::measures::transport_scales::TransportScales;
 use crate::run::{Breakdown, Place};
 
 /// Volume fraction below which a cell counts as clear fluid for the particle momentum
@@ -66,6 +67,9 @@ pub(super) struct Params<'a> {
     /// settle at the terminal velocity of the drag law, not at the Stokes velocity that a
     /// zero slip would give
     pub slip_phi: f64,
+    /// the scales of qs*, Shields and the nominal Shields number of the summary and the
+    /// time series
+    pub scales: TransportScales,
 }
 
 /// What a step recomputes from the state or keeps only within itself: the copy a
@@ -230,6 +234,12 @@ impl<'a> Eulerian<'a> {
             k_omega_physics,
             drift_form: fluctuation.map_or(DriftForm::Gradient, |f| f.drift_form()),
             slip_phi: if fluctuation.is_some() { f64::MIN_POSITIVE } else { 1e-6 },
+            scales: TransportScales::new(
+                scene,
+                scene.particles.density,
+                scene.particles.diameter,
+                cfg.domain.water_depth,
+            ),
             cfg,
         };
         let work = Workspace {
@@ -343,10 +353,6 @@ impl<'a> Eulerian<'a> {
     /// dilatancy; without the overburden of a blocked surface face).
     pub fn particle_pressure(&self) -> Vec<f64> {
         self.work.co.pres.iter().map(|p| p.p).collect()
-    }
-
-    pub(super) fn breakdown(&self, cell: usize, field: &'static str, value: f64, reason: String) -> Breakdown {
-        breakdown(&self.params, &self.state, cell, field, value, reason)
     }
 }
 

@@ -13,9 +13,11 @@ use std::time::Instant;
 
 use saltus_core::scene::TimeStepping;
 
+use super::coefficients::{evaluate, update_local_pressure};
 use super::k_omega::solve_two_equation;
 use super::momentum::solve_momentum;
 use super::rheology::Rheology;
+use super::stress::kinetic_pressures;
 use super::temperature::solve_temperature;
 use super::volume_fraction::solve_phi;
 use super::{stage, Eulerian};
@@ -45,14 +47,13 @@ impl Eulerian<'_> {
         let t = work.stages.lap(stage::MOMENTUM, t);
         if params.kinetic {
             solve_temperature(params, state, work, dt, bdf2)?;
-            if let Rheology::Kinetic { model, .. } = self.params.m.rheology {
+            if let Rheology::Kinetic { model, .. } = params.m.rheology {
                 // the phi step sees the new temperature
-                self.kinetic_pressures(model);
+                kinetic_pressures(params, state, work, model);
             }
         } else {
-            self.update_local_pressure();
+            update_local_pressure(params, state, work);
         }
-        let Self { params, state, work } = self;
         let t = work.stages.lap(stage::GRANULAR, t);
         solve_two_equation(params, state, work, dt, bdf2)?;
         let t = work.stages.lap(stage::TURBULENCE, t);
@@ -103,7 +104,7 @@ impl Eulerian<'_> {
             }
         }
         self.state.stepping.previous = p;
-        let r = self.evaluate_with(false);
+        let r = evaluate(&self.params, &mut self.state, &mut self.work, false);
         if let Some(kw) = &mut self.state.kw {
             kw.col.restore();
         }
@@ -177,9 +178,7 @@ impl Stepper for Eulerian<'_> {
     fn warm_start(&mut self, from: &crate::run::WarmStart) -> Result<(), String> {
         match from {
             crate::run::WarmStart::Profiles(p) => self.warm_start_from(p),
-            crate::run::WarmStart::State(r) => {
-                Err(format!("{}: the Eulerian column starts from profiles, not from a checkpoint", r.file.display()))
-            }
+            crate::run::WarmStart::State(_) => Err(super::warm::refusal(from).unwrap_or_default()),
         }
     }
 

@@ -4,6 +4,18 @@
 use super::solver::Eulerian;
 use crate::output::Profiles;
 use crate::run::start_profiles::StartProfiles;
+use crate::run::WarmStart;
+
+/// Why the column cannot start from `from`, if it cannot: it starts from profiles, not
+/// from a checkpoint.
+pub fn refusal(from: &WarmStart) -> Option<String> {
+    match from {
+        WarmStart::Profiles(_) => None,
+        WarmStart::State(r) => {
+            Some(format!("{}: the Eulerian column starts from profiles, not from a checkpoint", r.file.display()))
+        }
+    }
+}
 
 impl Eulerian<'_> {
     /// Take phi, u_f, u_p (and theta_g of a kinetic closure) from `p`, interpolated in z

@@ -9,7 +9,6 @@ use super::run::solver::Lagrangian;
 use super::run::state::{self, Stage};
 use super::run::workspace::within;
 use crate::measures::flux_levels::flux_levels_by;
-use crate::measures::transport_scales::TransportScales;
 use crate::output::{self, finite};
 use crate::run::{Clock, Ending, Limits, Phase, Progress, Sample, Stepper};
 use crate::RunReport;
@@ -129,8 +128,7 @@ impl Stepper for Lagrangian<'_> {
             s.theta_g = finite(self.particles().temperature());
             return s;
         }
-        let mat = self.material();
-        let scales = TransportScales::new(self.scene(), mat.rho_p, mat.d, self.config().domain.water_depth);
+        let scales = self.params.scales;
         let qs = self.state.transport_rate();
         s.qs = finite(qs);
         s.qs_star = finite(scales.qs_star(qs));

@@ -39,8 +39,9 @@ const MAGIC: &[u8; 8] = b"SALTUSCP";
 /// bottom, its histories and the walls' own law, and the contact law its normal force;
 /// 4: the DEM state is the solver's `State` as one struct, the ParaView series and the
 /// driver's clock travel with the cadences; 5: the DEM carries the time average of the
-/// phases' relative velocity of Cheng's eq 24).
-pub const VERSION: u32 = 5;
+/// phases' relative velocity of Cheng's eq 24; 6: the DEM engine keeps no clock of its
+/// own, the solver's state is the one clock).
+pub const VERSION: u32 = 6;
 
 /// Where the cadences are: part of a checkpoint, so that a restarted run writes the rows
 /// and snapshots the uninterrupted run would have.
@@ -314,6 +315,12 @@ mod tests {
         let file = dir.join(FILE);
         let mut bytes = std::fs::read(&file).unwrap();
         let n = bytes.len();
+        // a checkpoint of the previous layout, intact otherwise, is refused by its version
+        let mut older = bytes.clone();
+        older[8..12].copy_from_slice(&(VERSION - 1).to_le_bytes());
+        std::fs::write(&file, &older).unwrap();
+        let e = read(&dir).unwrap_err().to_string();
+        assert!(e.contains(&format!("format version {}, this program reads version {VERSION}", VERSION - 1)), "{e}");
         bytes[n - 12] ^= 1;
         std::fs::write(&file, &bytes).unwrap();
         let e = read(&dir).unwrap_err().to_string();

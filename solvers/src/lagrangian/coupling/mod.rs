@@ -5,4 +5,5 @@
 pub mod averaging;
 pub mod damping;
 pub mod drag;
+pub mod exchange;
 pub mod smoothing;

@@ -38,9 +38,10 @@ use super::walls::{Wall, MAX_WALLS};
 /// The DEM engine: its parameters (box, contact law, walls, bottom, time step: set once
 /// from the scene, carried in a checkpoint with the state so that a restore can be
 /// checked against the scene), its state (particles, neighbour list with the pairs'
-/// springs, the walls' and cylinders' springs, body force, clock) and its scratch
-/// (refilled by every step, never saved). The coupled solver reaches into
-/// the particles and the body force; everyone else reads it through its methods.
+/// springs, the walls' and cylinders' springs, body force; no clock: the steps and the
+/// time are the solver's state's) and its scratch (refilled by every step, never saved).
+/// The coupled solver reaches into the particles and the body force; everyone else reads
+/// it through its methods.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Dem {
     /// periodic box
@@ -61,10 +62,6 @@ pub struct Dem {
     pub(crate) p: Particles,
     /// body acceleration of mobile particles: gravity and buoyancy (m/s^2)
     pub(crate) body: [f64; 3],
-    /// simulated time (s)
-    pub(crate) time: f64,
-    /// steps taken
-    steps: u64,
     /// neighbour list and pair histories
     list: NeighbourList,
     /// history of the wall contacts of each mobile particle
@@ -92,8 +89,6 @@ impl Dem {
             walls,
             body,
             dt,
-            time: 0.0,
-            steps: 0,
             list: NeighbourList::new(skin),
             wall_hist: vec![[[0.0; 3]; MAX_WALLS]; nm],
             cylinders: None,
@@ -138,14 +133,6 @@ impl Dem {
     /// Time step (s).
     pub fn dt(&self) -> f64 {
         self.dt
-    }
-    /// Simulated time (s).
-    pub fn time(&self) -> f64 {
-        self.time
-    }
-    /// Steps taken.
-    pub fn steps(&self) -> u64 {
-        self.steps
     }
     /// Neighbour list and pair histories.
     pub fn list(&self) -> &NeighbourList {
@@ -212,8 +199,6 @@ impl Dem {
         self.rebuild_due = self.integrate(slices.is_some());
         self.work.stages.lap(2, t);
         self.list.tick();
-        self.time += self.dt;
-        self.steps += 1;
     }
 
     /// Wall time of the stages of the steps so far ([`STAGES`]; not part of the state: a

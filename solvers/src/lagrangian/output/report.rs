@@ -19,7 +19,6 @@ use crate::lagrangian::stats::cooling::Cooling;
 use crate::lagrangian::stats::truncation::Window;
 use crate::measures::flux_levels::{flux_layer_thickness, flux_levels};
 use crate::measures::rouse::rouse_number;
-use crate::measures::transport_scales::TransportScales;
 use crate::output::{finite, Profiles, Summary};
 use crate::run::{Clock, Ending};
 use crate::RunReport;
@@ -34,7 +33,7 @@ pub fn report(m: &Lagrangian<'_>, ending: &Ending, clock: &Clock) -> RunReport {
     let z: Vec<f64> = (0..n).map(|c| (c as f64 + 0.5) * dz).collect();
     let faces: Vec<f64> = (0..=n).map(|c| c as f64 * dz).collect();
     let mat = m.material();
-    let scales = TransportScales::new(scene, mat.rho_p, mat.d, m.config().domain.water_depth);
+    let scales = m.transport_scales();
     let samples = m.stats().samples;
     let mut p = Profiles::default();
     let z_c = z.clone();

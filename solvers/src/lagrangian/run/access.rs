@@ -11,6 +11,7 @@ use crate::lagrangian::engine::dem::Dem;
 use crate::lagrangian::engine::particles::Particles;
 use crate::lagrangian::stats::statistics::Stats;
 use crate::lagrangian::stats::steady::Steady;
+use crate::measures::transport_scales::TransportScales;
 
 impl Lagrangian<'_> {
     /// The scene.
@@ -113,6 +114,10 @@ impl Lagrangian<'_> {
     pub fn material(&self) -> Material {
         self.params.mat
     }
+    /// The scales of qs*, Shields and the nominal Shields number.
+    pub fn transport_scales(&self) -> TransportScales {
+        self.params.scales
+    }
     /// Haff's cooling time constant of a homogeneous cooling scene, sqrt(pi) d / (4 (1 -
     /// e^2) phi g0) (s m/s; over sqrt(T0) it is the cooling time): a gas without fluid,
     /// body force or friction in a triply periodic box; `None` for any other scene.
@@ -121,6 +126,6 @@ impl Lagrangian<'_> {
     }
     /// Fluid density (kg/m^3).
     pub fn fluid_density(&self) -> f64 {
-        self.params.rho_f
+        self.params.scene.fluid.density
     }
 }

@@ -10,6 +10,7 @@ use super::config::{Bottom, FluidMode, Surface};
 use super::setup;
 use super::solver::{Lagrangian, CHECK_STEPS};
 use super::state::Stage;
+use super::stepping::{average, check, dem_step};
 use crate::column::{FluidColumn, Grid};
 use crate::lagrangian::coupling::averaging::{CellSums, Seen};
 use crate::lagrangian::coupling::damping::SlipAverage;
@@ -32,13 +33,13 @@ impl Lagrangian<'_> {
         while self.state.settle_steps < end {
             let update = self.state.settle_steps.is_multiple_of(self.params.fluid_every) && fluid;
             let checkpoint = self.state.settle_steps.is_multiple_of(CHECK_STEPS);
-            self.dem_step(update, false);
+            dem_step(&self.params, &mut self.state, &mut self.work, update, false);
             self.state.settle_steps += 1;
             if update {
-                self.average();
+                average(&self.params, &mut self.state, &mut self.work);
             }
             if update || checkpoint {
-                if let Err(b) = self.check() {
+                if let Err(b) = check(&self.params, &self.state) {
                     return Some(Ending::Unstable(during_deposition(b)));
                 }
             }
@@ -98,7 +99,6 @@ impl Lagrangian<'_> {
         {
             self.fit_column_to_deposit(deposit)?;
         }
-        self.state.dem.time = 0.0;
         self.state.stage = Stage::Flow;
         Ok(())
     }

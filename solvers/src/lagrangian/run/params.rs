@@ -8,6 +8,7 @@ use super::config::Config;
 use super::setup::Material;
 use crate::column::ColumnParams;
 use crate::lagrangian::coupling::drag::DragModels;
+use crate::measures::transport_scales::TransportScales;
 
 /// The resolved parameters of a run.
 pub struct Params<'a> {
@@ -28,7 +29,9 @@ pub struct Params<'a> {
     /// body acceleration of the flow (the deposition runs without the streamwise pull)
     pub(crate) flow_body: [f64; 3],
     pub(crate) mat: Material,
-    pub(crate) rho_f: f64,
+    /// the scales of qs*, Shields and the nominal Shields number of the summary and the
+    /// time series
+    pub(crate) scales: TransportScales,
     pub(crate) seed: u64,
     /// the fluid column's parameters, when coupled (a deposit-fitted column is built anew
     /// from them)

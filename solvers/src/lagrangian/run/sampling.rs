@@ -4,13 +4,14 @@
 
 use super::config::FluidMode;
 use super::solver::Lagrangian;
+use super::stepping::average;
 use crate::lagrangian::engine::contact_sums::Slices;
 use crate::lagrangian::stats::granular::{FieldScales, GranularAverages};
 
 impl Lagrangian<'_> {
     /// The averaging slices (the fluid cells) in particle coordinates.
     pub fn slices(&self) -> Slices {
-        Slices { base: self.state.field.base, dz: self.state.field.dz, n: self.state.field.u.len() }
+        self.state.slices()
     }
 
     /// Whether the fluid update (or dry sample) of this flow step takes an averaging
@@ -32,7 +33,7 @@ impl Lagrangian<'_> {
     /// An averaging sample of a run without fluid (one that asks for the granular
     /// fields): the particle sums and the granular fields, the fluid columns at rest.
     pub(crate) fn dry_sample(&mut self) {
-        self.average();
+        average(&self.params, &mut self.state, &mut self.work);
         let qs = self.state.transport_rate();
         let zeros = &self.work.zero_faces[..self.state.field.u.len()];
         self.state.stats.add(&self.state.sums, &self.state.field.u, zeros, zeros, zeros, &self.work.zero_faces, qs);

@@ -21,12 +21,10 @@ use crate::lagrangian::engine::particles::Particles;
 use crate::lagrangian::stats::granular::GranularStats;
 use crate::lagrangian::stats::statistics::Stats;
 use crate::lagrangian::stats::steady::Steady;
+use crate::measures::transport_scales::TransportScales;
 use saltus_core::grain::{carnahan_starling, sphere_volume};
 
-/// Particle speed beyond which the run is declared unstable (m/s): far above any
-/// bedload or settling velocity, reached only when the time step is too large for the
-/// stiffness.
-pub const MAX_SPEED: f64 = 100.0;
+pub use crate::lagrangian::coupling::exchange::MAX_SPEED;
 
 /// Overlap of a contact over the smaller diameter beyond which the run is declared
 /// unstable: grains passing through each other. The rigid-limit stiffness keeps overlaps
@@ -203,8 +201,8 @@ impl<'a> Lagrangian<'a> {
                 fluid_every,
                 settle_total,
                 flow_body,
+                scales: TransportScales::new(scene, mat.rho_p, mat.d, cfg.domain.water_depth),
                 mat,
-                rho_f: scene.fluid.density,
                 seed: scene.seed,
                 column_params,
                 haff,

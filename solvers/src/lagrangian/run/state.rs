@@ -19,6 +19,7 @@ use crate::lagrangian::coupling::averaging::CellSums;
 use crate::lagrangian::coupling::damping::SlipAverage;
 use crate::lagrangian::coupling::drag::{FluidField, FluidForces};
 use crate::lagrangian::coupling::smoothing::PhiWindow;
+use crate::lagrangian::engine::contact_sums::Slices;
 use crate::lagrangian::engine::dem::Dem;
 use crate::lagrangian::stats::granular::GranularStats;
 use crate::lagrangian::stats::statistics::Stats;
@@ -94,6 +95,11 @@ pub struct State {
 }
 
 impl State {
+    /// The averaging slices (the fluid cells) in particle coordinates.
+    pub(crate) fn slices(&self) -> Slices {
+        Slices { base: self.field.base, dz: self.field.dz, n: self.field.u.len() }
+    }
+
     /// Time of the current phase (s): of the deposition, then of the flow.
     pub(crate) fn phase_time(&self) -> f64 {
         match self.stage {

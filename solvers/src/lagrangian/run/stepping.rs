@@ -9,289 +9,231 @@ use std::time::Instant;
 use saltus_core::scene::{ContactModel, DragVelocity};
 
 use super::config::FluidMode;
+use super::params::Params;
 use super::solver::{Lagrangian, CHECK_STEPS, MAX_OVERLAP, MAX_SPEED};
 use super::stage;
 use super::state::{Stage, State};
-use crate::column::{Closures, Coupling};
-use crate::inputs;
+use super::workspace::Workspace;
+use crate::column::Closures;
 use crate::lagrangian::coupling::averaging::Seen;
-use crate::lagrangian::coupling::damping::DampingLaw;
+use crate::lagrangian::coupling::exchange::{step_column, ExchangeModels, Grains};
 use crate::lagrangian::coupling::smoothing;
 use crate::run::{Breakdown, Ending, Limits, Place, Stepper};
 
-impl Lagrangian<'_> {
-    /// One DEM step with the fluid force of the current fluid field; with `sampled`, the
-    /// step takes the contact sums of the granular fields.
-    pub(crate) fn dem_step(&mut self, all: bool, sampled: bool) {
-        if self.params.cfg.settings.numerics.fluid != FluidMode::Off {
-            let t0 = Instant::now();
-            let upto = if all { self.state.dem.p.len() } else { self.state.dem.p.n_mobile };
-            let models = self.params.models();
-            let dt = self.state.dem.dt();
-            let State { dem, forces, field, .. } = &mut self.state;
-            let (p, ext) = dem.particles_and_external_force();
-            forces.evaluate(p, field, &models, dt, upto, ext);
-            if all && models.velocity == DragVelocity::SphereAverage {
-                // the exact exchange needs the fluid velocity each grain's drag saw,
-                // before the step moves it
-                let p = &self.state.dem.p;
-                self.work.seen.resize(p.len(), 0.0);
-                for ((s, &z), &r) in self.work.seen.iter_mut().zip(&p.z).zip(&p.radius) {
-                    *s = self.state.field.sphere_velocity(z, r);
-                }
-            }
-            self.work.stages.lap(stage::DRAG, t0);
-        }
-        let slices = sampled.then(|| self.slices());
-        self.state.dem.step_sampled(slices);
-    }
-
-    /// Average the particles on the cells and refresh phi (and the hindrance convention)
-    /// the particles see.
-    pub(crate) fn average(&mut self) {
+/// One DEM step with the fluid force of the current fluid field; with `sampled`, the
+/// step takes the contact sums of the granular fields.
+pub(crate) fn dem_step(params: &Params, state: &mut State, work: &mut Workspace, all: bool, sampled: bool) {
+    if params.cfg.settings.numerics.fluid != FluidMode::Off {
         let t0 = Instant::now();
-        let (k, urx) = (&self.state.forces.k, &self.state.forces.urx);
-        let seen = match self.params.cfg.settings.numerics.drag_velocity {
-            DragVelocity::Centre => Seen::Centre,
-            DragVelocity::SphereAverage => {
-                // one per particle even where no drag was evaluated (a dry run's samples)
-                self.work.seen.resize(self.state.dem.p.len(), 0.0);
-                Seen::SphereAverage(&self.work.seen)
+        let upto = if all { state.dem.p.len() } else { state.dem.p.n_mobile };
+        let models = params.models();
+        let dt = state.dem.dt();
+        let State { dem, forces, field, .. } = state;
+        let (p, ext) = dem.particles_and_external_force();
+        forces.evaluate(p, field, &models, dt, upto, ext);
+        if all && models.velocity == DragVelocity::SphereAverage {
+            // the exact exchange needs the fluid velocity each grain's drag saw,
+            // before the step moves it
+            let p = &state.dem.p;
+            work.seen.resize(p.len(), 0.0);
+            for ((s, &z), &r) in work.seen.iter_mut().zip(&p.z).zip(&p.radius) {
+                *s = state.field.sphere_velocity(z, r);
             }
-        };
-        self.state.sums.accumulate(&self.state.dem.p, self.state.field.base, self.state.field.dz, k, urx, seen);
-        let u_f: &[f64] = match &self.state.column {
-            Some(c) => c.velocity(),
-            None => &self.state.field.u,
-        };
-        self.state.sums.coupling(
-            self.state.cell_volume,
-            u_f,
-            &mut self.state.phi,
-            &mut self.state.u_p,
-            &mut self.state.beta,
-        );
-        // the fluid's volume fraction: eq 14's mean over the period's DEM steps, then
-        // eq 17's diffusion (Cheng et al.; coupling::smoothing); the reported averages
-        // keep the slices of this step
-        self.state.phi_window.take_mean(self.state.cell_volume, &mut self.state.phi);
-        let l_d = self.params.cfg.settings.numerics.phi_diffusion;
-        if l_d > 0.0 {
-            let a = (l_d * self.params.mat.d / self.state.field.dz).powi(2);
-            smoothing::diffuse(&mut self.state.phi, a, &mut self.work.diffusion);
         }
-        for (c, &phi) in self.state.phi.iter().enumerate() {
-            self.state.field.phi[c] = phi.min(0.99);
-            self.state.field.re_ratio[c] = self.params.hindrance.reynolds_convention().ratio(phi.min(0.99));
-        }
-        self.state.field.set_bed_threshold(self.params.fluctuation.and_then(|f| f.above_bed()));
-        if self.params.re_free_hindrance {
-            let n = self.state.field.phi.len();
-            self.state.field.hindrance.resize(n, 1.0);
-            // Re_p does not matter for such a closure
-            self.params.hindrance.factor_batch(
-                &self.state.field.phi,
-                &self.work.zero_faces[..n],
-                &mut self.state.field.hindrance,
-            );
-        }
-        self.work.stages.lap(stage::AVERAGING, t0);
+        work.stages.lap(stage::DRAG, t0);
     }
+    let slices = sampled.then(|| state.slices());
+    state.dem.step_sampled(slices);
+}
 
-    /// First non-finite or runaway particle, then grains that pass through each other
-    /// (an overlap beyond [`MAX_OVERLAP`] of a diameter).
-    pub(crate) fn check(&self) -> Result<(), Breakdown> {
-        let time = self.state.phase_time();
-        if let Some((a, field, value)) = self.state.dem.first_non_finite() {
+/// Average the particles on the cells and refresh phi (and the hindrance convention)
+/// the particles see.
+pub(crate) fn average(params: &Params, state: &mut State, work: &mut Workspace) {
+    let t0 = Instant::now();
+    let (k, urx) = (&state.forces.k, &state.forces.urx);
+    let seen = match params.cfg.settings.numerics.drag_velocity {
+        DragVelocity::Centre => Seen::Centre,
+        DragVelocity::SphereAverage => {
+            // one per particle even where no drag was evaluated (a dry run's samples)
+            work.seen.resize(state.dem.p.len(), 0.0);
+            Seen::SphereAverage(&work.seen)
+        }
+    };
+    state.sums.accumulate(&state.dem.p, state.field.base, state.field.dz, k, urx, seen);
+    let u_f: &[f64] = match &state.column {
+        Some(c) => c.velocity(),
+        None => &state.field.u,
+    };
+    state.sums.coupling(state.cell_volume, u_f, &mut state.phi, &mut state.u_p, &mut state.beta);
+    // the fluid's volume fraction: eq 14's mean over the period's DEM steps, then
+    // eq 17's diffusion (Cheng et al.; coupling::smoothing); the reported averages
+    // keep the slices of this step
+    state.phi_window.take_mean(state.cell_volume, &mut state.phi);
+    let l_d = params.cfg.settings.numerics.phi_diffusion;
+    if l_d > 0.0 {
+        let a = (l_d * params.mat.d / state.field.dz).powi(2);
+        smoothing::diffuse(&mut state.phi, a, &mut work.diffusion);
+    }
+    for (c, &phi) in state.phi.iter().enumerate() {
+        state.field.phi[c] = phi.min(0.99);
+        state.field.re_ratio[c] = params.hindrance.reynolds_convention().ratio(phi.min(0.99));
+    }
+    state.field.set_bed_threshold(params.fluctuation.and_then(|f| f.above_bed()));
+    if params.re_free_hindrance {
+        let n = state.field.phi.len();
+        state.field.hindrance.resize(n, 1.0);
+        // Re_p does not matter for such a closure
+        params.hindrance.factor_batch(&state.field.phi, &work.zero_faces[..n], &mut state.field.hindrance);
+    }
+    work.stages.lap(stage::AVERAGING, t0);
+}
+
+/// First non-finite or runaway particle, then grains that pass through each other
+/// (an overlap beyond [`MAX_OVERLAP`] of a diameter).
+pub(crate) fn check(params: &Params, state: &State) -> Result<(), Breakdown> {
+    let time = state.phase_time();
+    if let Some((a, field, value)) = state.dem.first_non_finite() {
+        return Err(Breakdown {
+            time,
+            place: Place::Particle { index: a },
+            field: Cow::Borrowed(field),
+            value,
+            reason: "not finite".into(),
+        });
+    }
+    let p = &state.dem.p;
+    for a in 0..p.n_mobile {
+        let s2 = p.vx[a] * p.vx[a] + p.vy[a] * p.vy[a] + p.vz[a] * p.vz[a];
+        if s2 > MAX_SPEED * MAX_SPEED {
             return Err(Breakdown {
                 time,
                 place: Place::Particle { index: a },
-                field: Cow::Borrowed(field),
-                value,
-                reason: "not finite".into(),
+                field: Cow::Borrowed("|v|"),
+                value: s2.sqrt(),
+                reason: speed_cause(params, state, p.z[a]),
             });
         }
-        let p = &self.state.dem.p;
-        for a in 0..p.n_mobile {
-            let s2 = p.vx[a] * p.vx[a] + p.vy[a] * p.vy[a] + p.vz[a] * p.vz[a];
-            if s2 > MAX_SPEED * MAX_SPEED {
-                return Err(Breakdown {
-                    time,
-                    place: Place::Particle { index: a },
-                    field: Cow::Borrowed("|v|"),
-                    value: s2.sqrt(),
-                    reason: self.speed_cause(p.z[a]),
-                });
-            }
-        }
-        if let Some((a, overlap)) = self.state.dem.deepest_overlap().filter(|&(_, o)| o > MAX_OVERLAP) {
-            return Err(Breakdown {
-                time,
-                place: Place::Particle { index: a },
-                field: Cow::Borrowed("overlap / d"),
-                value: overlap,
-                reason: self.overlap_cause(p.z[a]),
-            });
-        }
-        Ok(())
     }
+    if let Some((a, overlap)) = state.dem.deepest_overlap().filter(|&(_, o)| o > MAX_OVERLAP) {
+        return Err(Breakdown {
+            time,
+            place: Place::Particle { index: a },
+            field: Cow::Borrowed("overlap / d"),
+            value: overlap,
+            reason: overlap_cause(params, state, p.z[a]),
+        });
+    }
+    Ok(())
+}
 
-    /// Why grains overlap by more than [`MAX_OVERLAP`] of a diameter, with the keys that
-    /// set the contact's stiffness and the time step.
-    fn overlap_cause(&self, z: f64) -> String {
-        let s = &self.params.cfg.settings;
-        let stiffness = match s.contact {
-            ContactModel::Linear => {
-                format!("particles.contact.stiffness = {} N/m", saltus_core::param::number(s.stiffness))
-            }
-            ContactModel::Hertz => format!("particles.contact.young = {} Pa", saltus_core::param::number(s.young)),
-        };
+/// Why grains overlap by more than [`MAX_OVERLAP`] of a diameter, with the keys that
+/// set the contact's stiffness and the time step.
+fn overlap_cause(params: &Params, state: &State, z: f64) -> String {
+    let s = &params.cfg.settings;
+    let stiffness = match s.contact {
+        ContactModel::Linear => {
+            format!("particles.contact.stiffness = {} N/m", saltus_core::param::number(s.stiffness))
+        }
+        ContactModel::Hertz => format!("particles.contact.young = {} Pa", saltus_core::param::number(s.young)),
+    };
+    format!(
+        "grains overlap by more than {MAX_OVERLAP} of a diameter at z = {} m, where a soft-sphere contact no longer holds: the contact is too soft for the load ({stiffness}; raise it, or leave particles.contact.stiffness out for the rigid-limit default of the linear law) or the time step {} s lets collisions run through (lower solver.lagrangian.dt_safety = {})",
+        saltus_core::param::decimal(z),
+        saltus_core::param::number(state.dem.dt()),
+        saltus_core::param::number(s.numerics.dt_safety)
+    )
+}
+
+/// Why a particle at height z outran [`MAX_SPEED`]: carried there by the fluid (a
+/// fluid period too long for the explicit coupling, or a driving too strong), or
+/// thrown by the contacts (a time step too large for their stiffness).
+fn speed_cause(params: &Params, state: &State, z: f64) -> String {
+    let u = state.field.velocity(z);
+    let at = format!("speed above {MAX_SPEED} m/s at z = {} m", saltus_core::param::decimal(z));
+    if u.abs() > 0.5 * MAX_SPEED {
         format!(
-            "grains overlap by more than {MAX_OVERLAP} of a diameter at z = {} m, where a soft-sphere contact no longer holds: the contact is too soft for the load ({stiffness}; raise it, or leave particles.contact.stiffness out for the rigid-limit default of the linear law) or the time step {} s lets collisions run through (lower solver.lagrangian.dt_safety = {})",
-            saltus_core::param::decimal(z),
-            saltus_core::param::number(self.state.dem.dt()),
-            saltus_core::param::number(s.numerics.dt_safety)
+            "{at}, where the fluid moves at {} m/s: the driving is too strong or solver.lagrangian.fluid_period = {} s too long for the coupling",
+            saltus_core::param::number(u),
+            saltus_core::param::number(params.cfg.settings.numerics.fluid_period)
+        )
+    } else {
+        format!(
+            "{at}, the fluid there at {} m/s: the contacts threw it, the time step {} s is too large for the contact stiffness (lower solver.lagrangian.dt_safety = {})",
+            saltus_core::param::number(u),
+            saltus_core::param::number(state.dem.dt()),
+            saltus_core::param::number(params.cfg.settings.numerics.dt_safety)
         )
     }
+}
 
-    /// Why a particle at height z outran [`MAX_SPEED`]: carried there by the fluid (a
-    /// fluid period too long for the explicit coupling, or a driving too strong), or
-    /// thrown by the contacts (a time step too large for their stiffness).
-    fn speed_cause(&self, z: f64) -> String {
-        let u = self.state.field.velocity(z);
-        let at = format!("speed above {MAX_SPEED} m/s at z = {} m", saltus_core::param::decimal(z));
-        if u.abs() > 0.5 * MAX_SPEED {
-            format!(
-                "{at}, where the fluid moves at {} m/s: the driving is too strong or solver.lagrangian.fluid_period = {} s too long for the coupling",
-                saltus_core::param::number(u),
-                saltus_core::param::number(self.params.cfg.settings.numerics.fluid_period)
-            )
-        } else {
-            format!(
-                "{at}, the fluid there at {} m/s: the contacts threw it, the time step {} s is too large for the contact stiffness (lower solver.lagrangian.dt_safety = {})",
-                saltus_core::param::number(u),
-                saltus_core::param::number(self.state.dem.dt()),
-                saltus_core::param::number(self.params.cfg.settings.numerics.dt_safety)
-            )
-        }
+/// The pressure gradient -dp/dx at flow time `t` (Pa/m): the steady one and that of
+/// `physics.forcing`, if any.
+pub(crate) fn pressure_gradient(params: &Params, t: f64) -> f64 {
+    let physics = &params.scene.physics;
+    match &physics.forcing {
+        Some(f) => physics.pressure_gradient + f.gradient(t, params.scene.fluid.density),
+        None => physics.pressure_gradient,
     }
+}
 
-    /// The pressure gradient -dp/dx at flow time `t` (Pa/m): the steady one and that of
-    /// `physics.forcing`, if any.
-    pub(crate) fn pressure_gradient(&self, t: f64) -> f64 {
-        let physics = &self.params.scene.physics;
-        match &physics.forcing {
-            Some(f) => physics.pressure_gradient + f.gradient(t, self.params.scene.fluid.density),
-            None => physics.pressure_gradient,
-        }
+/// The particles' share of a time-dependent forcing: the streamwise body acceleration
+/// of the DEM step that starts now, with the pressure gradient at its start (the step
+/// is explicit). Nothing without a forcing.
+fn apply_forcing(params: &Params, state: &mut State) {
+    let scene = params.scene;
+    if scene.physics.forcing.is_none() {
+        return;
     }
+    let grad = pressure_gradient(params, state.time);
+    let p = &scene.physics;
+    let body = super::setup::body_acceleration(
+        &params.cfg,
+        p.gravity,
+        p.slope,
+        scene.fluid.density,
+        scene.particles.density,
+        grad,
+    );
+    state.dem.body[0] = body[0];
+}
 
-    /// The particles' share of a time-dependent forcing: the streamwise body acceleration
-    /// of the DEM step that starts now, with the pressure gradient at its start (the step
-    /// is explicit). Nothing without a forcing.
-    fn apply_forcing(&mut self) {
-        let scene = self.params.scene;
-        if scene.physics.forcing.is_none() {
-            return;
-        }
-        let grad = self.pressure_gradient(self.state.time);
-        let p = &scene.physics;
-        let body = super::setup::body_acceleration(
-            &self.params.cfg,
-            p.gravity,
-            p.slope,
-            scene.fluid.density,
-            scene.particles.density,
-            grad,
-        );
-        self.state.dem.body[0] = body[0];
-    }
-
-    /// One fluid update: averages, column solve, field refresh, statistics.
-    fn fluid_update(&mut self) -> Result<(), Breakdown> {
-        self.average();
+impl Lagrangian<'_> {
+    /// One fluid update: averages, column solve, field refresh, and with `sampled` (the
+    /// step's [`Lagrangian::sample_due`]) the statistics.
+    fn fluid_update(&mut self, sampled: bool) -> Result<(), Breakdown> {
+        average(&self.params, &mut self.state, &mut self.work);
         let t0 = Instant::now();
         let tau_f = self.params.cfg.settings.numerics.fluid_period;
         // the fluid's share of a forcing: the column's backward-Euler step to t + tau_f
         // takes the pressure gradient of its end
-        let forced =
-            self.params.scene.physics.forcing.is_some().then(|| self.pressure_gradient(self.state.time + tau_f));
-        if let Some(col) = self.state.column.as_mut() {
-            if let Some(start) = self.params.turbulence.as_two_equation().and_then(|m| m.slip_average_start()) {
-                let law = DampingLaw {
-                    drag: self.params.drag,
-                    hindrance: self.params.hindrance,
-                    diameter: col.params().diameter,
-                    rho_f: self.params.rho_f,
-                    nu_f: col.params().viscosity,
-                };
-                let (sums, phi) = (&self.state.sums, &self.state.field.phi);
-                self.state.slip.update(self.state.time, start, sums, col.velocity(), phi, &law);
-                col.set_damping_drag(&self.state.slip.beta);
-            }
-            if let Some(g) = forced {
-                col.set_pressure_gradient(g).map_err(|e| Breakdown {
-                    time: self.state.time,
-                    place: Place::Column,
-                    field: Cow::Borrowed("pressure_gradient"),
-                    value: g,
-                    reason: e.to_string(),
-                })?;
-            }
-            let coupling = Coupling { phi: &self.state.field.phi, beta: &self.state.beta, u_p: &self.state.u_p };
-            let closures = Closures {
-                viscosity: self.params.viscosity,
-                turbulence: self.params.turbulence,
-                wall_friction: self.params.scene.closures.wall_friction.as_deref(),
+        let forced = self
+            .params
+            .scene
+            .physics
+            .forcing
+            .is_some()
+            .then(|| pressure_gradient(&self.params, self.state.time + tau_f));
+        let State { column, sums, beta, u_p, bed_surface, field, slip, tau_t, time, .. } = &mut self.state;
+        if let Some(col) = column.as_mut() {
+            let models = ExchangeModels {
+                closures: Closures {
+                    viscosity: self.params.viscosity,
+                    turbulence: self.params.turbulence,
+                    wall_friction: self.params.scene.closures.wall_friction.as_deref(),
+                },
+                drag: self.params.drag,
+                hindrance: self.params.hindrance,
+                rho_f: self.params.scene.fluid.density,
             };
-            if let Err(e) = col.step(tau_f, &coupling, &closures) {
-                return Err(Breakdown {
-                    time: self.state.time,
-                    place: Place::Column,
-                    field: Cow::Borrowed("u_f"),
-                    value: f64::NAN,
-                    reason: e.to_string(),
-                });
-            }
-            // a runaway column (a fluid period far beyond the particles' response time
-            // leaves the drag no hold on it) is stopped here with its cause, before the
-            // particles it would fling blow up
-            if let Some((c, &u)) = col.velocity().iter().enumerate().find(|(_, u)| u.is_nan() || u.abs() > MAX_SPEED) {
-                return Err(Breakdown {
-                    time: self.state.time,
-                    place: Place::Cell { index: c, z: col.grid().centres()[c] },
-                    field: Cow::Borrowed("u_f"),
-                    value: u,
-                    reason: format!(
-                        "fluid velocity above {MAX_SPEED} m/s: the driving is too strong or solver.lagrangian.fluid_period = {} s too long for the coupling",
-                        saltus_core::param::number(tau_f)
-                    ),
-                });
-            }
-            self.state.field.set_velocity(col.velocity());
-            self.state.field.nu_t.copy_from_slice(col.eddy_viscosity());
-            if let Some((k, omega)) = col.k_omega() {
-                let [kf, wf] = &mut self.state.field.k_omega;
-                kf.clear();
-                kf.extend_from_slice(k);
-                wf.clear();
-                wf.extend_from_slice(omega);
-            }
-            for ((r, &nu), &g) in self.state.field.reynolds.iter_mut().zip(col.eddy_viscosity()).zip(col.shear_rate()) {
-                *r = inputs::reynolds_stress(nu, g);
-            }
-            col.reynolds_stress(&mut self.state.tau_t);
-            let grid = col.grid();
-            let bed = inputs::bed_surface(grid.centres(), &self.state.field.phi, self.state.bed_surface);
-            self.state.field.scales =
-                inputs::flow_scales(grid.centres(), grid.dz(), col.velocity(), grid.height(), bed);
+            let grains = Grains { sums, beta, u_p, bed_surface: *bed_surface };
+            step_column(col, &models, &grains, field, slip, tau_t, (*time, tau_f), forced)?;
         }
         let t0 = self.work.stages.lap(stage::COLUMN, t0);
-        self.check()?;
+        check(&self.params, &self.state)?;
         let qs = self.state.transport_rate();
         self.state.steady.add(self.state.time, qs);
         self.state.truncation.add(self.state.time, qs);
-        if self.state.time >= self.params.cfg.settings.numerics.stats_start {
+        if sampled {
             let tau_face: &[f64] = match &self.state.column {
                 Some(c) => c.shear_stress(),
                 None => &self.work.zero_faces,
@@ -331,8 +273,9 @@ impl Lagrangian<'_> {
             self.state.stats.cooling.add(self.state.time, self.state.dem.p.temperature(), self.params.haff);
         }
         let sampled = update && self.sample_due();
-        self.apply_forcing();
-        self.dem_step(update && fluid != FluidMode::Off, sampled && self.state.granular.is_some());
+        apply_forcing(&self.params, &mut self.state);
+        let granular = sampled && self.state.granular.is_some();
+        dem_step(&self.params, &mut self.state, &mut self.work, update && fluid != FluidMode::Off, granular);
         if fluid != FluidMode::Off {
             // eq 14's window: every step's slices (nothing when the scene keeps none)
             let f = &self.state.field;
@@ -340,9 +283,9 @@ impl Lagrangian<'_> {
         }
         if update {
             if fluid == FluidMode::Off {
-                self.check()?;
+                check(&self.params, &self.state)?;
             } else {
-                self.fluid_update()?;
+                self.fluid_update(sampled)?;
             }
             if fluid == FluidMode::Off && sampled {
                 let t0 = Instant::now();
@@ -350,7 +293,7 @@ impl Lagrangian<'_> {
                 self.work.stages.lap(stage::SAMPLING, t0);
             }
         } else if checkpoint {
-            self.check()?;
+            check(&self.params, &self.state)?;
         }
         self.state.steps += 1;
         self.state.time = self.state.steps as f64 * self.state.dem.dt();

@@ -38,6 +38,7 @@ use saltus_core::scene::Scene;
 use super::config::FluidMode;
 use super::solver::Lagrangian;
 use super::state::{self, Stage, State};
+use super::stepping::average;
 use crate::output::Profiles;
 use crate::run::checkpoint::{scene_differences_in, Restart};
 use crate::run::start_profiles::StartProfiles;
@@ -169,7 +170,7 @@ impl Lagrangian<'_> {
         }
         if self.params.cfg.settings.numerics.fluid != FluidMode::Off {
             // the first drag and the first row of the time series see the carried bed
-            self.average();
+            average(&self.params, &mut self.state, &mut self.work);
         }
         Ok(())
     }
@@ -229,7 +230,7 @@ impl Lagrangian<'_> {
             p.wz[a] = 0.0;
         }
         if self.params.cfg.settings.numerics.fluid != FluidMode::Off {
-            self.average();
+            average(&self.params, &mut self.state, &mut self.work);
         }
         Ok(())
     }
