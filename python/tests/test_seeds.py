@@ -71,4 +71,4 @@ def test_seeds_start_from_a_bank_and_bad_input_is_refused(root, tmp_path):
     with pytest.raises(saltus.RunError, match="256"):
         saltus.run_seeds(scene, 257, set=short, out=tmp_path / "many")
     with pytest.raises(saltus.RunError, match="lagrangian"):
-        saltus.run_seeds(scene, 2, set={"solver.type": "eulerian"}, out=tmp_path / "eul")
+        saltus.run_seeds(scene, 2, set={"solver.type": "eulerian", "closures.granular": {"type": "mu_i"}}, out=tmp_path / "eul")
