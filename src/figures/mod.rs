@@ -73,7 +73,7 @@ pub fn canvas(png: &Path, size: (u32, u32)) -> anyhow::Result<Area<'_>> {
 const MAX_DECADES: i32 = 200;
 
 /// The ends of a logarithmic axis over the values `lo..hi`, widened by `factor` each
-/// side, inside the positive normal numbers and at most [`MAX_DECADES`] decades apart
+/// side, inside the positive normal numbers and at most 200 decades apart
 /// (the lower end raised): a value near 1e308 or 1e-308 would otherwise give an infinite
 /// or zero end, or a ratio of the ends that overflows, on which the axis's key points
 /// never end.

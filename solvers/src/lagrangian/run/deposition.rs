@@ -7,10 +7,11 @@
 use std::borrow::Cow;
 
 use super::config::{Bottom, FluidMode, Surface};
+use super::sampling::average;
 use super::setup;
 use super::solver::{Lagrangian, CHECK_STEPS};
 use super::state::Stage;
-use super::stepping::{average, check, dem_step};
+use super::stepping::{check, dem_step};
 use crate::column::{FluidColumn, Grid};
 use crate::lagrangian::coupling::averaging::{CellSums, Seen};
 use crate::lagrangian::coupling::damping::SlipAverage;

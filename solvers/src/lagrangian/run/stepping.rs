@@ -10,14 +10,13 @@ use saltus_core::scene::{ContactModel, DragVelocity};
 
 use super::config::FluidMode;
 use super::params::Params;
+use super::sampling::{average, dry_sample, sample_due, sample_granular};
 use super::solver::{Lagrangian, CHECK_STEPS, MAX_OVERLAP, MAX_SPEED};
 use super::stage;
 use super::state::{Stage, State};
 use super::workspace::Workspace;
 use crate::column::Closures;
-use crate::lagrangian::coupling::averaging::Seen;
 use crate::lagrangian::coupling::exchange::{step_column, ExchangeModels, Grains};
-use crate::lagrangian::coupling::smoothing;
 use crate::run::{Breakdown, Ending, Limits, Place, Stepper};
 
 /// One DEM step with the fluid force of the current fluid field; with `sampled`, the
@@ -44,48 +43,6 @@ pub(crate) fn dem_step(params: &Params, state: &mut State, work: &mut Workspace,
     }
     let slices = sampled.then(|| state.slices());
     state.dem.step_sampled(slices);
-}
-
-/// Average the particles on the cells and refresh phi (and the hindrance convention)
-/// the particles see.
-pub(crate) fn average(params: &Params, state: &mut State, work: &mut Workspace) {
-    let t0 = Instant::now();
-    let (k, urx) = (&state.forces.k, &state.forces.urx);
-    let seen = match params.cfg.settings.numerics.drag_velocity {
-        DragVelocity::Centre => Seen::Centre,
-        DragVelocity::SphereAverage => {
-            // one per particle even where no drag was evaluated (a dry run's samples)
-            work.seen.resize(state.dem.p.len(), 0.0);
-            Seen::SphereAverage(&work.seen)
-        }
-    };
-    state.sums.accumulate(&state.dem.p, state.field.base, state.field.dz, k, urx, seen);
-    let u_f: &[f64] = match &state.column {
-        Some(c) => c.velocity(),
-        None => &state.field.u,
-    };
-    state.sums.coupling(state.cell_volume, u_f, &mut state.phi, &mut state.u_p, &mut state.beta);
-    // the fluid's volume fraction: eq 14's mean over the period's DEM steps, then
-    // eq 17's diffusion (Cheng et al.; coupling::smoothing); the reported averages
-    // keep the slices of this step
-    state.phi_window.take_mean(state.cell_volume, &mut state.phi);
-    let l_d = params.cfg.settings.numerics.phi_diffusion;
-    if l_d > 0.0 {
-        let a = (l_d * params.mat.d / state.field.dz).powi(2);
-        smoothing::diffuse(&mut state.phi, a, &mut work.diffusion);
-    }
-    for (c, &phi) in state.phi.iter().enumerate() {
-        state.field.phi[c] = phi.min(0.99);
-        state.field.re_ratio[c] = params.hindrance.reynolds_convention().ratio(phi.min(0.99));
-    }
-    state.field.set_bed_threshold(params.fluctuation.and_then(|f| f.above_bed()));
-    if params.re_free_hindrance {
-        let n = state.field.phi.len();
-        state.field.hindrance.resize(n, 1.0);
-        // Re_p does not matter for such a closure
-        params.hindrance.factor_batch(&state.field.phi, &work.zero_faces[..n], &mut state.field.hindrance);
-    }
-    work.stages.lap(stage::AVERAGING, t0);
 }
 
 /// First non-finite or runaway particle, then grains that pass through each other
@@ -199,7 +156,7 @@ fn apply_forcing(params: &Params, state: &mut State) {
 
 impl Lagrangian<'_> {
     /// One fluid update: averages, column solve, field refresh, and with `sampled` (the
-    /// step's [`Lagrangian::sample_due`]) the statistics.
+    /// step's [`sample_due`]) the statistics.
     fn fluid_update(&mut self, sampled: bool) -> Result<(), Breakdown> {
         average(&self.params, &mut self.state, &mut self.work);
         let t0 = Instant::now();
@@ -247,7 +204,7 @@ impl Lagrangian<'_> {
                 tau_face,
                 qs,
             );
-            self.sample_granular();
+            sample_granular(&mut self.state);
         }
         self.work.stages.lap(stage::SAMPLING, t0);
         Ok(())
@@ -272,7 +229,7 @@ impl Lagrangian<'_> {
             // the initial temperature Haff's law starts from
             self.state.stats.cooling.add(self.state.time, self.state.dem.p.temperature(), self.params.haff);
         }
-        let sampled = update && self.sample_due();
+        let sampled = update && sample_due(&self.params, &self.state);
         apply_forcing(&self.params, &mut self.state);
         let granular = sampled && self.state.granular.is_some();
         dem_step(&self.params, &mut self.state, &mut self.work, update && fluid != FluidMode::Off, granular);
@@ -289,7 +246,7 @@ impl Lagrangian<'_> {
             }
             if fluid == FluidMode::Off && sampled {
                 let t0 = Instant::now();
-                self.dry_sample();
+                dry_sample(&self.params, &mut self.state, &mut self.work);
                 self.work.stages.lap(stage::SAMPLING, t0);
             }
         } else if checkpoint {

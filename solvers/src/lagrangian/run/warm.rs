@@ -36,9 +36,9 @@ use std::borrow::Cow;
 use saltus_core::scene::Scene;
 
 use super::config::FluidMode;
+use super::sampling::average;
 use super::solver::Lagrangian;
 use super::state::{self, Stage, State};
-use super::stepping::average;
 use crate::output::Profiles;
 use crate::run::checkpoint::{scene_differences_in, Restart};
 use crate::run::start_profiles::StartProfiles;
