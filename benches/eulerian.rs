@@ -49,7 +49,7 @@ fn channel_k_omega(c: &mut Criterion) {
             m.steps()
         })
     });
-    let d = &cfg.domain;
+    let d = &scene.domain;
     let grid = Grid::geometric(cfg.cells, d.water_depth, d.stretching).expect("grid");
     let params = ColumnParams {
         pressure_gradient: scene.physics.pressure_gradient,

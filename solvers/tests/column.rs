@@ -529,7 +529,7 @@ fn k_omega_channel_matches_the_eulerian_solver() {
     saltus_closures::link();
     let scene = Scene::from_file_with(root.join("cases/verification/channel_re590.toml"), &[]).expect("scene");
     let cfg = Config::from_scene(&scene).expect("config");
-    let (n, ratio, h) = (cfg.cells, cfg.domain.stretching, cfg.domain.water_depth);
+    let (n, ratio, h) = (cfg.cells, scene.domain.stretching, scene.domain.water_depth);
     let mut eul = Eulerian::new(&scene, cfg).expect("solver");
     assert_eq!(drive(&mut eul, &mut Quiet).ending, Ending::Steady);
     let (k_e, w_e) = eul.k_omega().expect("k-omega state");

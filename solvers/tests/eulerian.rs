@@ -459,7 +459,7 @@ fn all_chassagne_cases_reach_steady_state() {
         assert!(qs > 0.0, "case {k}: no transport");
         qs_star.push(qs / scale);
         if k <= 5 {
-            let theta = m.config().domain.water_depth * s.physics.slope / (s.submerged_ratio() * d);
+            let theta = s.domain.water_depth * s.physics.slope / (s.submerged_ratio() * d);
             by_theta.push((theta, qs / scale));
         }
     }

@@ -147,7 +147,7 @@ fn evaluate_drag(params: &Params, state: &State, work: &mut Workspace) {
 fn evaluate_drift(params: &Params, state: &State, work: &mut Workspace) {
     let Some(fl) = params.m.fluctuation else { return };
     let g = params.op.grid();
-    let bed = inputs::bed_surface(g.centres(), &state.phi, params.cfg.domain.bed_height);
+    let bed = inputs::bed_surface(g.centres(), &state.phi, params.scene.domain.bed_height);
     let scales = inputs::flow_scales(g.centres(), g.dz(), &state.uf, g.height(), bed);
     let nu_t = state.eddy.values();
     for (i, &nt) in nu_t.iter().enumerate() {

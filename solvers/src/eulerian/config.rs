@@ -6,11 +6,10 @@ use saltus_core::Error;
 
 pub use saltus_core::scene::{Domain, EulerianSettings as Settings, Top};
 
-/// Checked configuration of one Eulerian run.
+/// Checked configuration of one Eulerian run (the column itself is the scene's
+/// `[domain]`, read there).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Config {
-    /// the column, as resolved at load
-    pub domain: Domain,
     /// number of cells: `domain.cells`, resolved (the default d/4 grid when absent)
     pub cells: usize,
     /// the numerics
@@ -26,6 +25,6 @@ impl Config {
             key: "domain.cells".into(),
             message: "missing, and the default d/4 grid is too fine; give it".into(),
         })?;
-        Ok(Config { domain: scene.domain.clone(), cells, settings: scene.solver.eulerian.clone() })
+        Ok(Config { cells, settings: scene.solver.eulerian.clone() })
     }
 }

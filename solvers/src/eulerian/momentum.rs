@@ -87,9 +87,9 @@ pub(super) fn solve_momentum(
     // bottom no-slip for both phases: stress = k du/dz at the wall
     params.op.add_wall(c.rho_f * co.fluid_k[0], &mut Phase { block: bl, c: 0 });
     params.op.add_wall(co.eta_face[0], &mut Phase { block: bl, c: 1 });
-    if params.cfg.domain.top == Top::Lid {
+    if params.scene.domain.top == Top::Lid {
         let w = c.rho_f * co.fluid_k[n - 1];
-        params.op.add_lid(w, params.cfg.domain.lid_velocity, &mut Phase { block: bl, c: 0 });
+        params.op.add_lid(w, params.scene.domain.lid_velocity, &mut Phase { block: bl, c: 0 });
     }
     if let Err(row) = bl.solve(&mut work.sc.xb) {
         return Err(breakdown(params, state, row, "u_f", f64::NAN, "singular momentum system".into()));

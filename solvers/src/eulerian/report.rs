@@ -199,7 +199,7 @@ impl Eulerian<'_> {
             particle_steps_per_s: None,
             shields_turbulent: None,
             rouse_number: self.params.m.fluctuation.and_then(|_| {
-                let d = &self.params.cfg.domain;
+                let d = &self.params.scene.domain;
                 rouse_number(self.z(), self.dz(), &phi, d.bed_height, d.water_depth)
             }),
             ..Summary::default()

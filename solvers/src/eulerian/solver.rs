@@ -137,7 +137,7 @@ impl<'a> Eulerian<'a> {
                 turbulence.transported()
             )));
         }
-        if two_equation.is_some() && cfg.domain.top == Top::Lid {
+        if two_equation.is_some() && scene.domain.top == Top::Lid {
             return Err(Error::Key {
                 file: scene.path.clone(),
                 key: "domain.top".into(),
@@ -169,7 +169,7 @@ impl<'a> Eulerian<'a> {
             grad: scene.physics.pressure_gradient,
             buoyant_weight: (scene.particles.density - scene.fluid.density) * g * cos,
         };
-        let d = &cfg.domain;
+        let d = &scene.domain;
         let n = cfg.cells;
         let height = d.bed_height + d.water_depth;
         // uniform, or geometric from the wall (domain.stretching, checked by Config)
@@ -238,7 +238,7 @@ impl<'a> Eulerian<'a> {
                 scene,
                 scene.particles.density,
                 scene.particles.diameter,
-                cfg.domain.water_depth,
+                scene.domain.water_depth,
             ),
             cfg,
         };
@@ -377,8 +377,8 @@ impl Params<'_> {
     /// Top value of the fluid velocity in the shear rate: the lid's, or that of a
     /// stress-free top ([`crate::column::ColumnOperator::stress_free_shear_top`]).
     pub(super) fn fluid_top(&self, u: &[f64]) -> f64 {
-        match self.cfg.domain.top {
-            Top::Lid => self.cfg.domain.lid_velocity,
+        match self.scene.domain.top {
+            Top::Lid => self.scene.domain.lid_velocity,
             _ => self.op.stress_free_shear_top(u),
         }
     }
