@@ -11,12 +11,9 @@ use serde::de::DeserializeOwned;
 
 use crate::table::Table;
 
-/// The final profiles of a run, in its folder.
-pub const PROFILES: &str = "profiles.csv";
-/// The summary of a run, in its folder; written when the run ends, whatever its ending.
-pub const SUMMARY: &str = "summary.json";
-/// The resolved scene of a run, in its folder.
-pub const SCENE: &str = "scene.toml";
+/// The final profiles, the summary and the resolved scene of a run, in its folder (the
+/// names the solvers write them under).
+pub use saltus_solvers::output::{PROFILES_FILE as PROFILES, SCENE_FILE as SCENE, SUMMARY_FILE as SUMMARY};
 
 /// The columns of `dir/profiles.csv` (an empty cell is NaN).
 pub fn profiles_table(dir: &Path) -> anyhow::Result<Table> {

@@ -219,16 +219,7 @@ pub fn load(path: &Path, set: &[String]) -> anyhow::Result<Calibration> {
     if let Some(q) = r.qs_star.filter(|q| !finite_positive(*q)) {
         return Err(key_error(path, "reference.qs_star", format!("{q}: a finite number > 0")));
     }
-    if let Some(h) = r.smooth.filter(|h| !(finite_positive(*h) && *h <= crate::compare::precision::MAX_SMOOTH)) {
-        return Err(key_error(
-            path,
-            "reference.smooth",
-            format!(
-                "{h}: h_g in grain diameters, a finite number > 0 and <= {}",
-                crate::compare::precision::MAX_SMOOTH
-            ),
-        ));
-    }
+    crate::compare::precision::check_smooth(path, r.smooth)?;
     if let Some(l) = r.correlation_length.filter(|l| !(finite_positive(*l) && *l <= 1e3)) {
         return Err(key_error(path, "reference.correlation_length", format!("{l}: grain diameters, > 0 and <= 1000")));
     }

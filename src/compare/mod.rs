@@ -192,13 +192,7 @@ fn check_reference(path: &Path, r: &ReferenceSpec, variants: &[Variant]) -> anyh
     if r.qs_star_stderr.is_some() && r.qs_star.is_none() {
         return Err(key_error(path, "reference.qs_star_stderr", "an error of a qs_star the table does not give"));
     }
-    if let Some(h) = r.smooth.filter(|h| !(h.is_finite() && *h > 0.0 && *h <= precision::MAX_SMOOTH)) {
-        return Err(key_error(
-            path,
-            "reference.smooth",
-            format!("{h}: h_g in grain diameters, a finite number > 0 and <= {}", precision::MAX_SMOOTH),
-        ));
-    }
+    precision::check_smooth(path, r.smooth)?;
     if (r.smooth.is_some() || r.align) && r.variant.is_none() {
         let key = if r.smooth.is_some() { "reference.smooth" } else { "reference.align" };
         return Err(key_error(

@@ -14,8 +14,19 @@ fn io(file: PathBuf) -> impl FnOnce(std::io::Error) -> Error {
     move |source| Error::Io { file, source }
 }
 
+/// The final profiles of a run, in its folder.
+pub const PROFILES_FILE: &str = "profiles.csv";
+/// The summary of a run, in its folder; written when the run ends, whatever its ending.
+pub const SUMMARY_FILE: &str = "summary.json";
+/// The resolved scene of a run, in its folder.
+pub const SCENE_FILE: &str = "scene.toml";
+/// The manifest of a run (program, closures, files), in its folder.
+pub const MANIFEST_FILE: &str = "manifest.json";
+/// The time series of a run, in its folder ([`crate::run::history`]).
+pub const TIMESERIES: &str = "timeseries.csv";
+
 /// The files [`write_run`] writes, with the time series, in the order of the manifest.
-pub const RUN_FILES: [&str; 5] = ["profiles.csv", "summary.json", "scene.toml", "manifest.json", "timeseries.csv"];
+pub const RUN_FILES: [&str; 5] = [PROFILES_FILE, SUMMARY_FILE, SCENE_FILE, MANIFEST_FILE, TIMESERIES];
 
 /// File name of the checkpoint in its folder ([`crate::run::checkpoint`]).
 pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
@@ -41,7 +52,7 @@ pub fn check_out(dir: &Path, scene: &Scene) -> Result<(), Error> {
             if !same(&written, &input) {
                 continue;
             }
-            if *name == "scene.toml" && what == "the scene file" {
+            if *name == SCENE_FILE && what == "the scene file" {
                 let unchanged = std::fs::read_to_string(&input).ok() == Some(scene.to_toml()?);
                 if unchanged {
                     continue;
@@ -65,10 +76,10 @@ pub fn write_run(dir: &Path, scene: &Scene, profiles: &Profiles, summary: &Summa
         let f = dir.join(name);
         std::fs::write(&f, text).map_err(io(f))
     };
-    put("profiles.csv", profiles.to_csv())?;
+    put(PROFILES_FILE, profiles.to_csv())?;
     let json = serde_json::to_string_pretty(summary).map_err(|e| Error::Invalid(format!("summary: {e}")))?;
-    put("summary.json", json + "\n")?;
-    put("scene.toml", scene.to_toml()?)?;
+    put(SUMMARY_FILE, json + "\n")?;
+    put(SCENE_FILE, scene.to_toml()?)?;
     let cl = &scene.closures;
     let name = |m: Option<&dyn saltus_core::Describe>| m.map_or("none", |m| m.name());
     let manifest = Manifest {
@@ -83,10 +94,11 @@ pub fn write_run(dir: &Path, scene: &Scene, profiles: &Profiles, summary: &Summa
             ("granular", name(cl.granular.as_deref().map(|m| m as &dyn saltus_core::Describe))),
             ("turbulence", name(cl.turbulence.as_deref().map(|m| m as &dyn saltus_core::Describe))),
             ("fluctuation", name(cl.fluctuation.as_deref().map(|m| m as &dyn saltus_core::Describe))),
+            ("wall_friction", name(cl.wall_friction.as_deref().map(|m| m as &dyn saltus_core::Describe))),
         ],
         files: RUN_FILES.to_vec(),
         wall_time_s: summary.wall_time_s,
     };
     let json = serde_json::to_string_pretty(&manifest).map_err(|e| Error::Invalid(format!("manifest: {e}")))?;
-    put("manifest.json", json + "\n")
+    put(MANIFEST_FILE, json + "\n")
 }

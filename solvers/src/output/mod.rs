@@ -6,7 +6,10 @@ mod manifest;
 mod profiles;
 mod summary;
 
-pub use files::{check_out, write_run, CHECKPOINT_FILE, RUN_FILES};
+pub use files::{
+    check_out, write_run, CHECKPOINT_FILE, MANIFEST_FILE, PROFILES_FILE, RUN_FILES, SCENE_FILE, SUMMARY_FILE,
+    TIMESERIES,
+};
 pub use manifest::{Manifest, GIT_REVISION};
 pub use profiles::{profile_gradient, Profiles};
 pub use summary::{finite, Summary, Timing};

@@ -26,8 +26,7 @@ use super::checkpoint::{self, Cadence, Restart};
 use super::paraview;
 use super::{Clock, Control, Ending, Observer, Phase, Progress, Sample, Stepper};
 
-/// File name of the time series.
-pub const TIMESERIES: &str = "timeseries.csv";
+pub use crate::output::TIMESERIES;
 /// Header of the time series (`theta_g`: DEM runs without fluid, empty for the others).
 pub const TIMESERIES_HEADER: &str = "t,qs,qs_star,shields,bed_surface,residual,steps,theta_g";
 /// Folder of the profile snapshots.

@@ -48,6 +48,19 @@ mod moving;
 pub(crate) use moving::{moving_rows, prepared};
 pub use moving::{BED_FLUX, MAX_SMOOTH, MOVING, MOVING_PHI, MOVING_U_P};
 
+/// Refuse a `reference.smooth` of the study file `path` that is not a width h_g in grain
+/// diameters in (0, [`MAX_SMOOTH`]].
+pub fn check_smooth(path: &std::path::Path, smooth: Option<f64>) -> anyhow::Result<()> {
+    match smooth.filter(|h| !(h.is_finite() && *h > 0.0 && *h <= MAX_SMOOTH)) {
+        Some(h) => Err(crate::study_file::key_error(
+            path,
+            "reference.smooth",
+            format!("{h}: h_g in grain diameters, a finite number > 0 and <= {MAX_SMOOTH}"),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// File names written beside the comparison table.
 pub const TABLE: &str = "precision.csv";
 /// See [`TABLE`].
