@@ -1,5 +1,6 @@
 //! The `Closure` class: one closure model of a `saltus closure eval` family, built from its
-//! table and evaluated on arrays.
+//! table and evaluated on arrays; and `saltus.closure_check`, the command line's property
+//! checks of any closure model.
 
 use std::path::Path;
 
@@ -7,10 +8,13 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
+use saltus::check::{self, Options};
 use saltus::eval::{self, EvalFamily, Model, Rows};
 use saltus::listing;
 use saltus::table::Table;
 use saltus_core::Error;
+
+use crate::declarations::family_of;
 
 use crate::convert::{json_to_py, py_to_toml};
 use crate::errors::{Place, SceneError};
@@ -130,4 +134,38 @@ impl Closure {
     fn __repr__(&self) -> String {
         format!("Closure({:?}, {:?})", self.model.family().key(), self.model.describe().name())
     }
+}
+
+/// `saltus.closure_check`: `saltus closure check --family F --model TOML`, as a dict.
+#[pyfunction]
+#[pyo3(signature = (family, model, cases=256))]
+pub fn closure_check<'py>(
+    py: Python<'py>,
+    family: &str,
+    model: &Bound<'py, PyAny>,
+    cases: u32,
+) -> PyResult<Bound<'py, PyAny>> {
+    let fam = family_of(family)?;
+    let scene_error = |e: anyhow::Error| SceneError::new_err(saltus::describe(&e));
+    let value = if let Ok(text) = model.cast::<PyString>() {
+        check::parse_model(&text.to_cow()?).map_err(scene_error)?
+    } else if model.is_instance_of::<PyDict>() {
+        py_to_toml(model, "model")?
+    } else {
+        return Err(PyTypeError::new_err("model: expected a dict or a TOML string"));
+    };
+    let report = py.detach(|| check::check(fam, value, Options { cases })).map_err(scene_error)?;
+    let outcomes: Vec<serde_json::Value> = report
+        .outcomes
+        .iter()
+        .map(|o| serde_json::json!({"name": o.name, "passed": o.passed, "summary": o.summary, "input": o.input}))
+        .collect();
+    let d = serde_json::json!({
+        "family": report.family.key(),
+        "model": report.model,
+        "passed": report.passed(),
+        "text": report.text(),
+        "outcomes": outcomes,
+    });
+    json_to_py(py, &d)
 }

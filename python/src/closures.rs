@@ -1,7 +1,7 @@
 //! Closures written in Python: `saltus.register_closure` puts a Python function in the
 //! run-time registry of saltus-core ([`saltus_core::runtime`]), where the scene loader, the
-//! model listing and `closure check` find it; `saltus.closure_check` runs the command
-//! line's property checks on any closure.
+//! model listing and `closure check` find it (what a registration declares is read by
+//! [`crate::declarations`]).
 //!
 //! The function is called with the GIL taken inside the call (runs release it, and the DEM
 //! calls drag from its rayon threads), once per batch the solver evaluates: a column, a
@@ -12,15 +12,13 @@ use std::sync::Arc;
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyString, PyTuple};
-use saltus::check::{self, Options};
+use pyo3::types::{PyDict, PyList, PyTuple};
 use saltus_core::closure::Family;
-use saltus_core::param::{number, Bound as End, ParamRange};
+use saltus_core::param::{number, ParamRange};
 use saltus_core::runtime::{self, BatchFunction, Control, Face, RuntimeLimit, RuntimeModel, Shape, Variate};
-use saltus_core::{DragReynolds, Field, Limit, Needs, Param};
+use saltus_core::{DragReynolds, Field, Needs, Param};
 
-use crate::convert::{json_to_py, py_to_toml};
-use crate::errors::SceneError;
+use crate::declarations::{declared_limits, declared_params, family_of, leak, limit, param};
 
 /// A Python function as the law (one face) of a run-time closure.
 struct PyFunction {
@@ -119,138 +117,6 @@ fn shown(v: &Bound<'_, PyAny>) -> String {
     match (v.getattr("dtype"), v.getattr("shape")) {
         (Ok(d), Ok(s)) => format!("an array of dtype {d} and shape {s}"),
         _ => format!("a {}", v.get_type().name().map_or_else(|_| "?".to_string(), |n| n.to_string())),
-    }
-}
-
-fn leak(s: String) -> &'static str {
-    // a registration lives as long as the process; Describe hands its strings out as 'static
-    Box::leak(s.into_boxed_str())
-}
-
-fn family_of(family: &str) -> PyResult<Family> {
-    saltus::listing::parse_family(family).map_err(|e| PyValueError::new_err(format!("{e:#}")))
-}
-
-/// One `params=` entry: a default, or a dict of `default`, `range`, `unit`, `description`.
-fn param(name: &str, v: &Bound<'_, PyAny>) -> PyResult<Param> {
-    let what = format!("params[{name:?}]");
-    let real = |x: &Bound<'_, PyAny>, key: &str| -> PyResult<f64> {
-        x.extract::<f64>().map_err(|_| PyTypeError::new_err(format!("{what}{key}: expected a number, found {x}")))
-    };
-    let Ok(d) = v.cast::<PyDict>() else {
-        return Ok(Param::new(name, real(v, "")?, ParamRange::any(), "", ""));
-    };
-    let mut p = Param::new(name, f64::NAN, ParamRange::any(), "", "");
-    let mut has_default = false;
-    for (k, x) in d.iter() {
-        let k: String = k.extract()?;
-        match k.as_str() {
-            "default" => {
-                p.value = real(&x, "[\"default\"]")?;
-                has_default = true;
-            }
-            "range" => {
-                p.range = if let Ok(s) = x.cast::<PyString>() {
-                    s.to_cow()?.parse().map_err(|e: String| PyValueError::new_err(format!("{what}: {e}")))?
-                } else {
-                    let (lo, hi): (f64, f64) = x.extract().map_err(|_| {
-                        PyTypeError::new_err(format!("{what}[\"range\"]: an interval \"(0, 100]\" or a pair (lo, hi)"))
-                    })?;
-                    if lo.is_nan() || hi.is_nan() || lo >= hi {
-                        return Err(PyValueError::new_err(format!("{what}: range ({lo}, {hi}): lo must be below hi")));
-                    }
-                    // a pair is closed at its finite ends
-                    let end = |e: f64| if e.is_infinite() { End::Unbounded } else { End::Closed(e) };
-                    ParamRange { lo: end(lo), hi: end(hi) }
-                }
-            }
-            "unit" => p.unit = leak(x.extract()?),
-            "description" | "doc" => p.doc = leak(x.extract()?),
-            other => {
-                return Err(PyValueError::new_err(format!(
-                    "{what}: unknown key `{other}`; known: default, range, unit, description"
-                )))
-            }
-        }
-    }
-    if !has_default {
-        return Err(PyValueError::new_err(format!("{what}: no \"default\"")));
-    }
-    Ok(p)
-}
-
-/// One `limits=` entry: a name, or (name, number or parameter name).
-fn limit(v: &Bound<'_, PyAny>, params: &[Param]) -> PyResult<RuntimeLimit> {
-    const KNOWN: &str = "\"high_reynolds\", \"dilute\", \"decreasing\", \"increasing\", \"packing_decreasing\", \
-                         \"non_negative\", (\"stokes\", x), (\"einstein\", x), (\"static_friction\", x), (\"wall_length\", x)";
-    let bad = || PyValueError::new_err(format!("limits: {v} is not a limit; known: {KNOWN}"));
-    if let Ok(s) = v.extract::<String>() {
-        return Ok(RuntimeLimit::Fixed(match s.as_str() {
-            "high_reynolds" => Limit::HighReynolds,
-            "dilute" => Limit::Dilute,
-            "decreasing" => Limit::Decreasing,
-            "increasing" => Limit::Increasing,
-            "packing_decreasing" => Limit::PackingDecreasing,
-            "non_negative" => Limit::NonNegative,
-            "stokes" => Limit::Stokes { cd_re: 24.0 },
-            "einstein" => Limit::Einstein { coefficient: 2.5 },
-            _ => return Err(bad()),
-        }));
-    }
-    let (kind, x): (String, Bound<'_, PyAny>) = v.extract().map_err(|_| bad())?;
-    if let Ok(p) = x.extract::<String>() {
-        let i = params
-            .iter()
-            .position(|q| q.name == p)
-            .ok_or_else(|| PyValueError::new_err(format!("limits: ({kind:?}, {p:?}): no parameter `{p}` in params")))?;
-        return match kind.as_str() {
-            "stokes" => Ok(RuntimeLimit::StokesParam(i)),
-            "einstein" => Ok(RuntimeLimit::EinsteinParam(i)),
-            "static_friction" => Ok(RuntimeLimit::StaticFrictionParam(i)),
-            "wall_length" => Ok(RuntimeLimit::WallLengthParam(i)),
-            _ => Err(bad()),
-        };
-    }
-    let x: f64 = x.extract().map_err(|_| bad())?;
-    match kind.as_str() {
-        "stokes" => Ok(RuntimeLimit::Fixed(Limit::Stokes { cd_re: x })),
-        "einstein" => Ok(RuntimeLimit::Fixed(Limit::Einstein { coefficient: x })),
-        "static_friction" => Ok(RuntimeLimit::Fixed(Limit::StaticFriction { mu_s: x })),
-        "wall_length" => Ok(RuntimeLimit::Fixed(Limit::WallLength { kappa: x })),
-        _ => Err(bad()),
-    }
-}
-
-/// The parameters of `params=`, none of them an input or a keyword of `faces`.
-fn declared_params(params: Option<&Bound<'_, PyDict>>, fam: Family, faces: &[Face]) -> PyResult<Vec<Param>> {
-    let params: Vec<Param> = match params {
-        Some(d) => d.iter().map(|(k, v)| param(&k.extract::<String>()?, &v)).collect::<PyResult<_>>()?,
-        None => Vec::new(),
-    };
-    for face in faces {
-        let (inputs, _, keywords) = runtime::face_io(*face);
-        if let Some(p) = params.iter().find(|p| inputs.contains(&p.name.as_str())) {
-            return Err(PyValueError::new_err(format!("params: `{}` is an input of the {fam} family", p.name)));
-        }
-        if let Some(p) = params.iter().find(|p| keywords.contains(&p.name.as_str())) {
-            return Err(PyValueError::new_err(format!(
-                "params: `{}` is a keyword the solver gives the {fam} function ({})",
-                p.name,
-                keywords.join(", ")
-            )));
-        }
-    }
-    Ok(params)
-}
-
-/// `limits=` as run-time limits.
-fn declared_limits(limits: Option<&Bound<'_, PyAny>>, params: &[Param]) -> PyResult<Vec<RuntimeLimit>> {
-    match limits.filter(|l| !l.is_none()) {
-        Some(l) if l.is_instance_of::<PyList>() || l.is_instance_of::<PyTuple>() => {
-            l.try_iter()?.map(|x| limit(&x?, params)).collect::<PyResult<_>>()
-        }
-        Some(l) => Err(PyTypeError::new_err(format!("limits: expected a list, found {l}"))),
-        None => Ok(Vec::new()),
     }
 }
 
@@ -522,59 +388,4 @@ pub fn register_closure(
 #[pyfunction]
 pub fn unregister_closure(family: &str, name: &str) -> PyResult<bool> {
     Ok(runtime::unregister(family_of(family)?, name))
-}
-
-/// `saltus.closure_check`: `saltus closure check --family F --model TOML`, as a dict.
-#[pyfunction]
-#[pyo3(signature = (family, model, cases=256))]
-pub fn closure_check<'py>(
-    py: Python<'py>,
-    family: &str,
-    model: &Bound<'py, PyAny>,
-    cases: u32,
-) -> PyResult<Bound<'py, PyAny>> {
-    let fam = family_of(family)?;
-    let scene_error = |e: anyhow::Error| SceneError::new_err(saltus::describe(&e));
-    let value = if let Ok(text) = model.cast::<PyString>() {
-        check::parse_model(&text.to_cow()?).map_err(scene_error)?
-    } else if model.is_instance_of::<PyDict>() {
-        py_to_toml(model, "model")?
-    } else {
-        return Err(PyTypeError::new_err("model: expected a dict or a TOML string"));
-    };
-    let report = py.detach(|| check::check(fam, value, Options { cases })).map_err(scene_error)?;
-    let outcomes: Vec<serde_json::Value> = report
-        .outcomes
-        .iter()
-        .map(|o| serde_json::json!({"name": o.name, "passed": o.passed, "summary": o.summary, "input": o.input}))
-        .collect();
-    let d = serde_json::json!({
-        "family": report.family.key(),
-        "model": report.model,
-        "passed": report.passed(),
-        "text": report.text(),
-        "outcomes": outcomes,
-    });
-    json_to_py(py, &d)
-}
-
-/// The `[python] modules` of a scene with its overrides (files absolute), for the Python
-/// package to import before it loads the scene.
-#[pyfunction]
-#[pyo3(signature = (scene, set=None))]
-pub fn scene_modules(
-    py: Python<'_>,
-    scene: std::path::PathBuf,
-    set: Option<&Bound<'_, PyAny>>,
-) -> PyResult<Vec<String>> {
-    let set = crate::convert::overrides(set)?;
-    saltus_core::scene::Scene::python_modules(&scene, &set).map_err(|e| crate::errors::load_error(py, e))
-}
-
-/// The command line on `args` (the program name first) in this process, with the GIL
-/// released (the DEM calls Python closures from its threads): its exit code.
-#[pyfunction]
-pub fn cli_main(py: Python<'_>, args: Vec<String>) -> u8 {
-    let args = args.into_iter().map(std::ffi::OsString::from).collect();
-    py.detach(|| saltus::cli::main_from(args))
 }

@@ -1,6 +1,7 @@
 //! The command line's commands as functions of `saltus._native`: `check`, `run`, `compare`,
 //! `diagnose` and `models`, each taking the command's arguments and returning what it
-//! printed and wrote as Python values.
+//! printed and wrote as Python values; the `[python]` modules of a scene; and the whole
+//! command line in this process (`python -m saltus`).
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -209,4 +210,25 @@ pub fn diagnose<'py>(
 pub fn models<'py>(py: Python<'py>, family: Option<&str>) -> PyResult<Bound<'py, PyAny>> {
     let family = family.map(listing::parse_family).transpose().map_err(|e| PyValueError::new_err(format!("{e:#}")))?;
     json_to_py(py, &listing::json(family))
+}
+
+/// The `[python] modules` of a scene with its overrides (files absolute), for the Python
+/// package to import before it loads the scene.
+#[pyfunction]
+#[pyo3(signature = (scene, set=None))]
+pub fn scene_modules(
+    py: Python<'_>,
+    scene: std::path::PathBuf,
+    set: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Vec<String>> {
+    let set = crate::convert::overrides(set)?;
+    saltus_core::scene::Scene::python_modules(&scene, &set).map_err(|e| crate::errors::load_error(py, e))
+}
+
+/// The command line on `args` (the program name first) in this process, with the GIL
+/// released (the DEM calls Python closures from its threads): its exit code.
+#[pyfunction]
+pub fn cli_main(py: Python<'_>, args: Vec<String>) -> u8 {
+    let args = args.into_iter().map(std::ffi::OsString::from).collect();
+    py.detach(|| saltus::cli::main_from(args))
 }

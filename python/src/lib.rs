@@ -30,6 +30,7 @@ mod closure_eval;
 mod closures;
 mod commands;
 mod convert;
+mod declarations;
 mod errors;
 mod seeds;
 mod sweep;
@@ -57,10 +58,10 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(closures::register_closure, m)?)?;
     m.add_function(wrap_pyfunction!(closures::unregister_closure, m)?)?;
     m.add_function(wrap_pyfunction!(closures::register_faces, m)?)?;
-    m.add_function(wrap_pyfunction!(closures::scene_modules, m)?)?;
-    m.add_function(wrap_pyfunction!(closures::cli_main, m)?)?;
+    m.add_function(wrap_pyfunction!(commands::scene_modules, m)?)?;
+    m.add_function(wrap_pyfunction!(commands::cli_main, m)?)?;
     // this process imports a scene's [python] modules (saltus.run, python -m saltus)
     saltus_core::runtime::set_python_host();
-    m.add_function(wrap_pyfunction!(closures::closure_check, m)?)?;
+    m.add_function(wrap_pyfunction!(closure_eval::closure_check, m)?)?;
     Ok(())
 }
