@@ -37,6 +37,7 @@ pub fn describe(e: &anyhow::Error) -> String {
     saltus_core::error::clip_words(&s).into_owned()
 }
 
+pub mod args;
 pub mod calibrate;
 pub mod check;
 pub mod cli;

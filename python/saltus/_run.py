@@ -149,6 +149,17 @@ def import_modules(paths: List[str]) -> None:
             importlib.import_module(p)
 
 
+def raise_with(interrupt: BaseException, result: Any) -> None:
+    """Raise the exception a Python signal handler raised during a run (Ctrl-C's
+    KeyboardInterrupt), with the run's result as its ``result`` attribute where the
+    exception takes one."""
+    try:
+        interrupt.result = result  # type: ignore[attr-defined]
+    except (AttributeError, TypeError):
+        pass
+    raise interrupt
+
+
 def run(
     scene: PathLike,
     set: Overrides = None,
@@ -243,11 +254,7 @@ def run(
         if result.out is not None:
             print(f"outputs: {result.out}")
     if interrupt is not None:
-        try:
-            interrupt.result = result
-        except (AttributeError, TypeError):
-            pass
-        raise interrupt
+        raise_with(interrupt, result)
     return result
 
 

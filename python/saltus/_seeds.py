@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import Any, Dict, List, Optional
 
 from . import _native
-from ._run import Overrides, PathLike, fspath, import_modules
+from ._run import Overrides, PathLike, fspath, import_modules, raise_with
 
 
 @dataclass(frozen=True, repr=False)
@@ -133,9 +133,5 @@ def run_seeds(
         errors=[tuple(e) for e in raw["errors"]],
     )
     if interrupt is not None:
-        try:
-            interrupt.result = result
-        except (AttributeError, TypeError):
-            pass
-        raise interrupt
+        raise_with(interrupt, result)
     return result

@@ -107,7 +107,8 @@ pub struct RunOptions {
 /// takes profiles. Profiles are checked by the solver as it takes them.
 pub fn warm_start_refusal(scene: &Scene, from: &WarmStart) -> Option<String> {
     match (scene.solver.kind, from) {
-        (SolverKind::Eulerian, _) => eulerian::warm_refusal(from),
+        (SolverKind::Eulerian, WarmStart::State(r)) => Some(eulerian::checkpoint_refusal(r)),
+        (SolverKind::Eulerian, WarmStart::Profiles(_)) => None,
         (SolverKind::Lagrangian, WarmStart::State(r)) => lagrangian::run::warm::refusal(scene, r),
         (SolverKind::Lagrangian, WarmStart::Profiles(_)) => None,
     }

@@ -112,7 +112,7 @@ pub use config::{Config, Domain, Settings, Top};
 pub use report::Derived;
 pub use rheology::{Elastic, Rheology};
 pub use solver::{Eulerian, PHI_FLOOR};
-pub use warm::refusal as warm_refusal;
+pub use warm::checkpoint_refusal;
 
 /// The stages of a step whose wall time the solver counts: the coefficients of the state
 /// (closures, drag, stresses), the streamwise momentum of both phases, the granular

@@ -178,7 +178,7 @@ impl Stepper for Eulerian<'_> {
     fn warm_start(&mut self, from: &crate::run::WarmStart) -> Result<(), String> {
         match from {
             crate::run::WarmStart::Profiles(p) => self.warm_start_from(p),
-            crate::run::WarmStart::State(_) => Err(super::warm::refusal(from).unwrap_or_default()),
+            crate::run::WarmStart::State(r) => Err(super::warm::checkpoint_refusal(r)),
         }
     }
 

@@ -3,18 +3,12 @@
 
 use super::solver::Eulerian;
 use crate::output::Profiles;
+use crate::run::checkpoint::Restart;
 use crate::run::start_profiles::StartProfiles;
-use crate::run::WarmStart;
 
-/// Why the column cannot start from `from`, if it cannot: it starts from profiles, not
-/// from a checkpoint.
-pub fn refusal(from: &WarmStart) -> Option<String> {
-    match from {
-        WarmStart::Profiles(_) => None,
-        WarmStart::State(r) => {
-            Some(format!("{}: the Eulerian column starts from profiles, not from a checkpoint", r.file.display()))
-        }
-    }
+/// Why the column cannot start from the checkpoint `r`: it starts from profiles.
+pub fn checkpoint_refusal(r: &Restart) -> String {
+    format!("{}: the Eulerian column starts from profiles, not from a checkpoint", r.file.display())
 }
 
 impl Eulerian<'_> {

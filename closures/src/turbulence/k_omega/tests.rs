@@ -300,3 +300,24 @@ proptest! {
         }
     }
 }
+
+/// Eq 34's bed omega stays finite and positive over the roughness range for any grain from
+/// 1e-6 m to 1 m and any u* up to 10 m/s (smooth limit included); a roughness outside
+/// [1e-3, 1e3] d, where 40000 nu / k_s^2 can overflow, is refused by name.
+#[test]
+fn bed_omega_is_finite_over_the_roughness_range_and_beyond_it_refused() {
+    for roughness in [1e-3, 1.0, 2.5, 1e3] {
+        let m = KOmega { roughness, ..KOmega::default() };
+        assert!(m.validate().is_ok());
+        for d in [1e-6, 1e-3, 1.0] {
+            for u_star in [0.0, 1e-308, 1e-3, 10.0] {
+                let w = m.omega_bed(u_star, 1e-6, d);
+                assert!(w.is_finite() && w > 0.0, "k_s {roughness} d, d {d}, u* {u_star}: {w}");
+            }
+        }
+    }
+    for roughness in [0.0, 1e-4, 1e-300, 1.1e3, f64::NAN, f64::INFINITY] {
+        let bad = KOmega { roughness, ..KOmega::default() };
+        assert_eq!(bad.validate().unwrap_err().key, "roughness", "{roughness}");
+    }
+}
