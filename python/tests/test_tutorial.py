@@ -5,10 +5,8 @@ sees the repository's `cases/`, after the short DEM run of the tutorial's step 6
 the page follows it."""
 
 import doctest
-import os
 import re
-
-import pytest
+import subprocess
 
 from conftest import ROOT
 
@@ -32,8 +30,6 @@ def step6_dem_command():
 
 
 def test_the_tutorials_python_session_prints_what_the_page_shows(cli_bin, tmp_path, monkeypatch):
-    import subprocess
-
     (tmp_path / "cases").symlink_to(ROOT / "cases")
     args = step6_dem_command()
     assert args[-2:] == ["--out", "out/case01_dem"], args
